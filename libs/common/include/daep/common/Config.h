@@ -1,0 +1,50 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace daep {
+
+/**
+ * Typed, strict access to an ini section. Missing required keys and unparsable
+ * values throw InputError naming "[section] key" and the config's source.
+ */
+class ConfigReader {
+public:
+    ConfigReader(const mrpt::config::CConfigFileBase& cfg, std::string section,
+                 std::string source = "config");
+
+    bool has(const std::string& key) const;
+    double requireDouble(const std::string& key) const;
+    int requireInt(const std::string& key) const;
+    bool requireBool(const std::string& key) const;
+    std::string requireString(const std::string& key) const;
+
+    double getDouble(const std::string& key, double fallback) const;
+    int getInt(const std::string& key, int fallback) const;
+    bool getBool(const std::string& key, bool fallback) const;
+    std::string getString(const std::string& key, const std::string& fallback) const;
+
+    /** Angles are written as `<key>_deg` in the ini; this returns radians. */
+    double requireAngleDeg(const std::string& keyDeg) const;
+
+    const std::string& section() const { return section_; }
+    const mrpt::config::CConfigFileBase& config() const { return cfg_; }
+
+private:
+    std::string raw(const std::string& key) const;
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+
+    const mrpt::config::CConfigFileBase& cfg_;
+    std::string section_;
+    std::string source_;
+};
+
+/** Directory of built-in data (worlds, default configs): $DAEP_SHARE_DIR or the build-time path. */
+std::string shareDirectory();
+
+}  // namespace daep

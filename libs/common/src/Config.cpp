@@ -1,0 +1,88 @@
+#include "daep/common/Config.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "daep/common/Error.h"
+#include "daep/common/Types.h"
+
+namespace daep {
+
+double wrapAngle(double a) {
+    a = std::remainder(a, 2.0 * M_PI);
+    return a <= -M_PI ? a + 2.0 * M_PI : a;
+}
+
+ConfigReader::ConfigReader(const mrpt::config::CConfigFileBase& cfg, std::string section,
+                           std::string source)
+    : cfg_(cfg), section_(std::move(section)), source_(std::move(source)) {}
+
+bool ConfigReader::has(const std::string& key) const { return cfg_.keyExists(section_, key); }
+
+void ConfigReader::fail(const std::string& key, const std::string& what) const {
+    throw InputError(source_ + ": [" + section_ + "] " + key + ": " + what);
+}
+
+std::string ConfigReader::raw(const std::string& key) const {
+    if (!has(key)) fail(key, "required key is missing");
+    std::string v = cfg_.read_string(section_, key, "", false);
+    const auto b = v.find_first_not_of(" \t");
+    const auto e = v.find_last_not_of(" \t\r");
+    return b == std::string::npos ? std::string() : v.substr(b, e - b + 1);
+}
+
+double ConfigReader::requireDouble(const std::string& key) const {
+    const std::string v = raw(key);
+    std::istringstream is(v);
+    double d = 0;
+    if (!(is >> d) || !is.eof() || !std::isfinite(d)) fail(key, "'" + v + "' is not a number");
+    return d;
+}
+
+int ConfigReader::requireInt(const std::string& key) const {
+    const std::string v = raw(key);
+    std::istringstream is(v);
+    long long i = 0;
+    if (!(is >> i) || !is.eof()) fail(key, "'" + v + "' is not an integer");
+    return static_cast<int>(i);
+}
+
+bool ConfigReader::requireBool(const std::string& key) const {
+    const std::string v = raw(key);
+    if (v == "true" || v == "1" || v == "yes" || v == "on") return true;
+    if (v == "false" || v == "0" || v == "no" || v == "off") return false;
+    fail(key, "'" + v + "' is not a boolean (true|false)");
+}
+
+std::string ConfigReader::requireString(const std::string& key) const {
+    const std::string v = raw(key);
+    if (v.empty()) fail(key, "value is empty");
+    return v;
+}
+
+double ConfigReader::getDouble(const std::string& key, double fallback) const {
+    return has(key) ? requireDouble(key) : fallback;
+}
+int ConfigReader::getInt(const std::string& key, int fallback) const {
+    return has(key) ? requireInt(key) : fallback;
+}
+bool ConfigReader::getBool(const std::string& key, bool fallback) const {
+    return has(key) ? requireBool(key) : fallback;
+}
+std::string ConfigReader::getString(const std::string& key, const std::string& fallback) const {
+    return has(key) ? requireString(key) : fallback;
+}
+
+double ConfigReader::requireAngleDeg(const std::string& keyDeg) const {
+    return requireDouble(keyDeg) * M_PI / 180.0;
+}
+
+std::string shareDirectory() {
+    if (const char* env = std::getenv("DAEP_SHARE_DIR"); env && *env) return env;
+    return DAEP_SHARE_DIR;
+}
+
+}  // namespace daep

@@ -1,0 +1,106 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "daep/common/Types.h"
+
+namespace mrpt::obs {
+class CObservation3DRangeScan;
+}
+namespace octomap {
+class OcTree;
+}
+
+namespace daep::mapping {
+
+enum class CellState : std::uint8_t { Unknown = 0, Free = 1, Occupied = 2 };
+
+struct MapParams {
+    double resolution = 0.2;
+    double maxRange = 5.0;  ///< longer rays clear space up to this range only
+    double probHit = 0.7;
+    double probMiss = 0.4;
+    double clampMin = 0.12;
+    double clampMax = 0.97;
+};
+
+/**
+ * The exploration map: an octomap::OcTree (the map of record, saved as .bt) mirrored into a
+ * dense grid of cell states over the exploration box plus a margin, so that the planners'
+ * millions of point queries are array lookups. Coverage is kept incrementally.
+ *
+ * Cells are the octree's leaf voxels at `resolution`; a cell belongs to the exploration box
+ * when its centre lies inside the box.
+ */
+class ExplorationMap {
+public:
+    ExplorationMap(const MapParams& params, const Aabb& explorationBox);
+    ~ExplorationMap();
+    ExplorationMap(const ExplorationMap&) = delete;
+    ExplorationMap& operator=(const ExplorationMap&) = delete;
+
+    /** Integrates points (world frame) seen from origin: ray clearing + endpoint hits. */
+    void insertPointCloud(const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3f>& points);
+
+    /**
+     * Unprojects a depth observation with MRPT (honouring its sensorPose) placed at the robot
+     * pose, and integrates it.
+     */
+    void insertObservation(const mrpt::obs::CObservation3DRangeScan& obs, const FlatPose& robot);
+
+    CellState state(const Eigen::Vector3d& p) const;
+    bool isFree(const Eigen::Vector3d& p) const { return state(p) == CellState::Free; }
+    bool isOccupied(const Eigen::Vector3d& p) const { return state(p) == CellState::Occupied; }
+    bool isUnknown(const Eigen::Vector3d& p) const { return state(p) == CellState::Unknown; }
+
+    /** All cells touching the axis-aligned box (centre, half extents) are known free. */
+    bool isBoxFree(const Eigen::Vector3d& center, const Eigen::Vector3d& halfExtents) const;
+
+    /** The capsule of `radius` around segment a-b lies in known free space. */
+    bool isSegmentFree(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const;
+
+    /** Like isSegmentFree but only occupied cells block (unknown space allowed). */
+    bool isSegmentFreeOrUnknown(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                double radius) const;
+
+    /**
+     * Walks from origin along unitDir; returns the distance to the first occupied cell, or
+     * maxRange if none.
+     */
+    double castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& unitDir,
+                   double maxRange) const;
+
+    /** Known (free or occupied) cells whose centre lies inside the exploration box. */
+    std::size_t knownCellsInBox() const { return knownInBox_; }
+    double knownVolumeInBox() const;
+    /** Known volume / box volume, in [0, 1]. */
+    double coverage() const;
+
+    double resolution() const { return params_.resolution; }
+    const MapParams& params() const { return params_; }
+    const Aabb& explorationBox() const { return box_; }
+    const octomap::OcTree& octree() const;
+
+    /** Centre of the cell that contains p. */
+    Eigen::Vector3d cellCenter(const Eigen::Vector3d& p) const;
+
+    /** Writes the octree as a binary .bt file (octovis). Returns false on I/O failure. */
+    bool writeBinary(const std::string& path) const;
+
+    /** Number of insertions so far; planners use it to know the map changed. */
+    std::uint64_t revision() const { return revision_; }
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    MapParams params_;
+    Aabb box_;
+    std::size_t knownInBox_ = 0;
+    std::uint64_t revision_ = 0;
+};
+
+}  // namespace daep::mapping

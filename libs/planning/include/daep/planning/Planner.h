@@ -1,0 +1,83 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "daep/common/Types.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+namespace daep::mapping {
+class ExplorationMap;
+}
+
+namespace daep::planning {
+
+/** How the drone moves between waypoints: turn on the spot to the yaw, then fly straight. */
+struct MotionLimits {
+    double speed = 0.5;    ///< m/s
+    double yawRate = 1.0;  ///< rad/s
+
+    /** Turn time + flight time from a to b. */
+    double travelTime(const FlatPose& a, const FlatPose& b) const;
+};
+
+struct Waypoint {
+    FlatPose pose;
+    double arrivalTime = 0.0;  ///< absolute simulated time the drone is expected to reach it
+};
+
+/** An edge of a planning tree, kept for display and debugging. */
+struct TreeEdge {
+    Eigen::Vector3d from;
+    Eigen::Vector3d to;
+};
+
+struct Plan {
+    enum class Status {
+        Path,      ///< fly `waypoints` in order, then plan again
+        Finished,  ///< the planner considers the exploration complete
+    };
+    Status status = Status::Finished;
+    std::vector<Waypoint> waypoints;
+    double gain = 0.0;    ///< gain of the chosen goal (m^3 of unknown volume)
+    double score = 0.0;   ///< planner-specific value of the chosen branch
+    std::string reason;   ///< short human-readable note (why finished, local/global, ...)
+    std::vector<TreeEdge> tree;
+};
+
+/** What a planner may look at when it plans. */
+struct PlanningContext {
+    double time = 0.0;  ///< simulated time now
+    FlatPose pose;      ///< current drone pose
+    const mapping::ExplorationMap* map = nullptr;
+    Aabb explorationBox;
+    MotionLimits motion;
+};
+
+/** One interface for RH-NBVP, AEP, DEP and DAEP. */
+class ExplorationPlanner {
+public:
+    virtual ~ExplorationPlanner() = default;
+    virtual std::string name() const = 0;
+    /** Plans from the context's state. Deterministic for a given seed and input sequence. */
+    virtual Plan plan(const PlanningContext& context) = 0;
+};
+
+/** Planner names accepted by createPlanner, sorted. */
+std::vector<std::string> plannerNames();
+
+/**
+ * Creates a planner by name, reading its parameters from the config (its own section plus
+ * [gain] and [planning]). Throws InputError for an unknown name (listing the valid ones) or a
+ * missing/bad key.
+ */
+std::unique_ptr<ExplorationPlanner> createPlanner(const std::string& name,
+                                                  const mrpt::config::CConfigFileBase& config,
+                                                  std::uint64_t seed);
+
+}  // namespace daep::planning

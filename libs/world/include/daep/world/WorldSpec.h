@@ -1,0 +1,69 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "daep/common/Types.h"
+
+namespace daep::world {
+
+/** Solid box: `pose` places its centre, `size` is the full extent along its own axes. */
+struct BoxShape {
+    std::string name;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    Eigen::Vector3d size = Eigen::Vector3d::Ones();
+};
+
+/** Solid upright-in-its-frame cylinder: axis along the local z, centred on `pose`. */
+struct CylinderShape {
+    std::string name;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    double radius = 0.5;
+    double length = 1.0;
+};
+
+/** Triangle mesh already transformed into the world frame. */
+struct TriangleMesh {
+    std::string name;
+    std::string source;  ///< file it was loaded from, for messages
+    std::vector<Eigen::Vector3f> vertices;
+    std::vector<Eigen::Vector3i> triangles;
+};
+
+/** A person walks its waypoints in order, then back to the first, forever. */
+struct PersonRoute {
+    std::string name;
+    std::vector<Eigen::Vector2d> waypoints;
+};
+
+/** Everything the simulator needs to know about one benchmark world. */
+struct WorldSpec {
+    std::string name;
+    std::string description;
+    std::string sourceFile;
+    Aabb explorationBox;
+    std::vector<BoxShape> boxes;
+    std::vector<CylinderShape> cylinders;
+    std::vector<TriangleMesh> meshes;
+    std::vector<Eigen::Vector3d> starts;  ///< spawn positions (the drone then climbs 1 m)
+    std::vector<PersonRoute> people;      ///< empty routes in static mode
+
+    /** Bounds of all static geometry and the exploration box. */
+    Aabb bounds() const;
+};
+
+/**
+ * Loads a world file (YAML, format in README.md). Mesh paths are relative to the world file.
+ * Throws InputError naming the file and, where known, the line.
+ */
+WorldSpec loadWorldFile(const std::string& path);
+
+/** A built-in world name ("exhibition") or a path to a world file -> the world file's path. */
+std::string resolveWorldPath(const std::string& nameOrPath);
+
+/** Names of the worlds in share/daep/worlds, sorted. */
+std::vector<std::string> builtinWorldNames();
+
+}  // namespace daep::world
