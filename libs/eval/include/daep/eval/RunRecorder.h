@@ -1,0 +1,93 @@
+#pragma once
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "daep/common/Types.h"
+
+namespace daep::eval {
+
+/** One sample of the metrics over time (timeseries.csv). */
+struct MetricsSample {
+    double time = 0.0;  ///< exploration time, s
+    double coveragePercent = 0.0;
+    double pathLength = 0.0;
+    double planningTime = 0.0;
+    int collisions = 0;
+};
+
+/** The final figures of a run (summary.json). */
+struct RunSummary {
+    double coveragePercent = 0.0;
+    double explorationTime = 0.0;
+    double pathLength = 0.0;
+    double planningTime = 0.0;  ///< total, as charged to the simulated clock
+    double planMsMedian = 0.0;  ///< per call, as charged to the simulated clock
+    double planMsP95 = 0.0;
+    int collisions = 0;
+    int staticCollisions = 0;
+    int iterations = 0;
+    bool finished = false;
+    double wallTime = 0.0;
+    double knownVolume = 0.0;
+    double boxVolume = 0.0;
+    std::string endReason;
+    /** Run identification (world, mode, planner, start, seed): written as strings. */
+    std::map<std::string, std::string> labels;
+};
+
+/**
+ * Streams a run's records to DIR as they happen (so an interrupted run keeps what it had):
+ * timeseries.csv, trajectory.csv and plans.csv; writes summary.json and timing.json at the end.
+ * Numbers are printed with fixed precision so equal runs give byte-identical files.
+ */
+class RunRecorder {
+public:
+    /** Creates DIR (and parents); throws std::runtime_error naming the path on failure. */
+    explicit RunRecorder(const std::string& directory);
+    ~RunRecorder();
+
+    const std::string& directory() const { return directory_; }
+    std::string path(const std::string& file) const;
+
+    void addSample(const MetricsSample& sample);
+    void addPose(double time, const FlatPose& pose);
+    /** One planner call: when, how long it was charged, its real duration, its outcome. */
+    void addPlan(double time, double chargedSec, double wallSec, const std::string& status,
+                 double gain, int waypoints);
+    void addCollision(int personIndex, double start, double end);
+
+    const std::vector<MetricsSample>& samples() const { return samples_; }
+    const std::vector<double>& chargedPlanTimes() const { return chargedPlanTimes_; }
+    const std::vector<double>& wallPlanTimes() const { return wallPlanTimes_; }
+
+    void writeSummary(const RunSummary& summary) const;
+    /** Real planner durations (not deterministic, so kept apart from summary.json). */
+    void writeTiming(double wallTimeSec, double simTimeSec) const;
+    void writeCollisions() const;
+
+    /** Flushes the streams (called by the mission after each plan). */
+    void flush();
+
+private:
+    struct Collision {
+        int person;
+        double start, end;
+    };
+    std::string directory_;
+    std::FILE* timeseries_ = nullptr;
+    std::FILE* trajectory_ = nullptr;
+    std::FILE* plans_ = nullptr;
+    std::vector<MetricsSample> samples_;
+    std::vector<double> chargedPlanTimes_;
+    std::vector<double> wallPlanTimes_;
+    std::vector<Collision> collisions_;
+};
+
+/** Writes a JSON string literal with escapes. */
+std::string jsonString(const std::string& s);
+
+}  // namespace daep::eval

@@ -1,0 +1,147 @@
+#include "daep/eval/RunRecorder.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "daep/eval/Statistics.h"
+
+namespace daep::eval {
+namespace {
+
+std::FILE* openForWriting(const std::string& path, const char* header) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + path);
+    std::fputs(header, f);
+    return f;
+}
+
+void closeFile(std::FILE*& f) {
+    if (f) std::fclose(f);
+    f = nullptr;
+}
+
+}  // namespace
+
+std::string jsonString(const std::string& s) {
+    std::string out = "\"";
+    for (const char c : s) {
+        switch (c) {
+            case '"': out += "\\\""; break;
+            case '\\': out += "\\\\"; break;
+            case '\n': out += "\\n"; break;
+            case '\t': out += "\\t"; break;
+            default:
+                if (static_cast<unsigned char>(c) < 0x20) {
+                    char buf[8];
+                    std::snprintf(buf, sizeof buf, "\\u%04x", c);
+                    out += buf;
+                } else {
+                    out += c;
+                }
+        }
+    }
+    return out + "\"";
+}
+
+RunRecorder::RunRecorder(const std::string& directory) : directory_(directory) {
+    std::error_code ec;
+    std::filesystem::create_directories(directory_, ec);
+    if (ec) throw std::runtime_error("cannot create output directory " + directory_ + ": " + ec.message());
+    timeseries_ = openForWriting(path("timeseries.csv"),
+                                 "t,coverage_percent,path_length_m,planning_time_s,collisions\n");
+    trajectory_ = openForWriting(path("trajectory.csv"), "t,x,y,z,yaw\n");
+    plans_ = openForWriting(path("plans.csv"),
+                            "t,charged_s,status,gain,waypoints\n");
+}
+
+RunRecorder::~RunRecorder() {
+    closeFile(timeseries_);
+    closeFile(trajectory_);
+    closeFile(plans_);
+}
+
+std::string RunRecorder::path(const std::string& file) const {
+    return (std::filesystem::path(directory_) / file).string();
+}
+
+void RunRecorder::addSample(const MetricsSample& s) {
+    samples_.push_back(s);
+    std::fprintf(timeseries_, "%.3f,%.4f,%.4f,%.4f,%d\n", s.time, s.coveragePercent, s.pathLength,
+                 s.planningTime, s.collisions);
+}
+
+void RunRecorder::addPose(double time, const FlatPose& p) {
+    std::fprintf(trajectory_, "%.3f,%.4f,%.4f,%.4f,%.4f\n", time, p.position.x(), p.position.y(),
+                 p.position.z(), p.yaw);
+}
+
+void RunRecorder::addPlan(double time, double chargedSec, double wallSec,
+                          const std::string& status, double gain, int waypoints) {
+    chargedPlanTimes_.push_back(chargedSec);
+    wallPlanTimes_.push_back(wallSec);
+    std::fprintf(plans_, "%.3f,%.6f,%s,%.4f,%d\n", time, chargedSec, status.c_str(), gain,
+                 waypoints);
+}
+
+void RunRecorder::addCollision(int personIndex, double start, double end) {
+    collisions_.push_back({personIndex, start, end});
+}
+
+void RunRecorder::flush() {
+    std::fflush(timeseries_);
+    std::fflush(trajectory_);
+    std::fflush(plans_);
+}
+
+void RunRecorder::writeSummary(const RunSummary& s) const {
+    const std::string file = path("summary.json");
+    std::FILE* f = std::fopen(file.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + file);
+    std::fprintf(f, "{\n");
+    for (const auto& [key, value] : s.labels)
+        std::fprintf(f, "  %s: %s,\n", jsonString(key).c_str(), jsonString(value).c_str());
+    std::fprintf(f, "  \"coverage_percent\": %.4f,\n", s.coveragePercent);
+    std::fprintf(f, "  \"exploration_time_s\": %.3f,\n", s.explorationTime);
+    std::fprintf(f, "  \"path_length_m\": %.4f,\n", s.pathLength);
+    std::fprintf(f, "  \"planning_time_s\": %.4f,\n", s.planningTime);
+    std::fprintf(f, "  \"plan_ms_median\": %.4f,\n", s.planMsMedian);
+    std::fprintf(f, "  \"plan_ms_p95\": %.4f,\n", s.planMsP95);
+    std::fprintf(f, "  \"collisions\": %d,\n", s.collisions);
+    std::fprintf(f, "  \"static_collisions\": %d,\n", s.staticCollisions);
+    std::fprintf(f, "  \"iterations\": %d,\n", s.iterations);
+    std::fprintf(f, "  \"finished\": %s,\n", s.finished ? "true" : "false");
+    std::fprintf(f, "  \"end_reason\": %s,\n", jsonString(s.endReason).c_str());
+    std::fprintf(f, "  \"known_volume_m3\": %.4f,\n", s.knownVolume);
+    std::fprintf(f, "  \"box_volume_m3\": %.4f,\n", s.boxVolume);
+    std::fprintf(f, "  \"wall_time_s\": %.3f\n", s.wallTime);
+    std::fprintf(f, "}\n");
+    std::fclose(f);
+}
+
+void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec) const {
+    const std::string file = path("timing.json");
+    std::FILE* f = std::fopen(file.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + file);
+    std::vector<double> ms;
+    ms.reserve(wallPlanTimes_.size());
+    for (double s : wallPlanTimes_) ms.push_back(1e3 * s);
+    std::fprintf(f, "{\n");
+    std::fprintf(f, "  \"plan_calls\": %zu,\n", ms.size());
+    std::fprintf(f, "  \"plan_wall_ms_median\": %.4f,\n", median(ms));
+    std::fprintf(f, "  \"plan_wall_ms_p95\": %.4f,\n", percentile(ms, 95));
+    std::fprintf(f, "  \"plan_wall_ms_max\": %.4f,\n", percentile(ms, 100));
+    std::fprintf(f, "  \"wall_time_s\": %.3f,\n", wallTimeSec);
+    std::fprintf(f, "  \"simulated_time_s\": %.3f,\n", simTimeSec);
+    std::fprintf(f, "  \"speedup_vs_real_time\": %.2f\n",
+                 wallTimeSec > 0 ? simTimeSec / wallTimeSec : 0.0);
+    std::fprintf(f, "}\n");
+    std::fclose(f);
+}
+
+void RunRecorder::writeCollisions() const {
+    std::FILE* f = openForWriting(path("collisions.csv"), "person,start_s,end_s\n");
+    for (const auto& c : collisions_) std::fprintf(f, "%d,%.3f,%.3f\n", c.person, c.start, c.end);
+    std::fclose(f);
+}
+
+}  // namespace daep::eval

@@ -1,0 +1,170 @@
+#include "daep/mission/ExperimentConfig.h"
+
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "daep/common/Config.h"
+#include "daep/common/Error.h"
+
+namespace daep::mission {
+namespace {
+
+struct IniLine {
+    std::string section, key, value;
+    int line = 0;
+};
+
+std::string trim(const std::string& s) {
+    const auto b = s.find_first_not_of(" \t\r");
+    if (b == std::string::npos) return {};
+    return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+/** Strips a trailing "  # comment" (a '#' or ';' preceded by white space). */
+std::string stripComment(const std::string& s) {
+    for (std::size_t i = 1; i < s.size(); ++i)
+        if ((s[i] == '#' || s[i] == ';') && (s[i - 1] == ' ' || s[i - 1] == '\t'))
+            return s.substr(0, i);
+    return s;
+}
+
+/** A small strict ini reader that remembers line numbers for error messages. */
+std::vector<IniLine> parseIni(const std::string& text, const std::string& source) {
+    std::vector<IniLine> out;
+    std::istringstream in(text);
+    std::string raw, section;
+    for (int lineNo = 1; std::getline(in, raw); ++lineNo) {
+        const std::string line = trim(raw);
+        if (line.empty() || line[0] == '#' || line[0] == ';') continue;
+        const std::string where = source + ":" + std::to_string(lineNo) + ": ";
+        if (line.front() == '[') {
+            if (line.back() != ']') throw InputError(where + "malformed section header '" + line + "'");
+            section = trim(line.substr(1, line.size() - 2));
+            continue;
+        }
+        const auto eq = line.find('=');
+        if (eq == std::string::npos) throw InputError(where + "expected 'key = value', got '" + line + "'");
+        if (section.empty()) throw InputError(where + "key outside any [section]");
+        const std::string key = trim(line.substr(0, eq));
+        if (key.empty()) throw InputError(where + "empty key");
+        out.push_back({section, key, trim(stripComment(line.substr(eq + 1))), lineNo});
+    }
+    return out;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream f(path);
+    if (!f) throw InputError(path + ": cannot open file");
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+}  // namespace
+
+struct ExperimentConfig::Impl {
+    mrpt::config::CConfigFileMemory memory;
+};
+
+ExperimentConfig::ExperimentConfig() : impl_(std::make_unique<Impl>()) {}
+ExperimentConfig::ExperimentConfig(ExperimentConfig&&) noexcept = default;
+ExperimentConfig::~ExperimentConfig() = default;
+
+const std::vector<std::string>& ExperimentConfig::requiredExperimentKeys() {
+    static const std::vector<std::string> keys = {"world", "mode",       "planner",      "start",
+                                                  "seed",  "max_time_s", "planning_time"};
+    return keys;
+}
+
+const mrpt::config::CConfigFileBase& ExperimentConfig::config() const { return impl_->memory; }
+
+void ExperimentConfig::set(const std::string& section, const std::string& key,
+                           const std::string& value) {
+    auto sec = std::find_if(sections_.begin(), sections_.end(),
+                            [&](const Section& s) { return s.name == section; });
+    if (sec == sections_.end()) {
+        sections_.push_back({section, {}});
+        sec = std::prev(sections_.end());
+    }
+    auto entry = std::find_if(sec->entries.begin(), sec->entries.end(),
+                              [&](const Entry& e) { return e.first == key; });
+    if (entry == sec->entries.end())
+        sec->entries.emplace_back(key, value);
+    else
+        entry->second = value;
+    impl_->memory.write(section, key, value);
+}
+
+ExperimentConfig ExperimentConfig::fromFile(const std::string& path,
+                                            const std::vector<std::string>& overrides) {
+    return fromText(readFile(path), path, overrides);
+}
+
+ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::string& source,
+                                            const std::vector<std::string>& overrides) {
+    const std::string defaultsPath = shareDirectory() + "/config/defaults.ini";
+    ExperimentConfig cfg;
+    cfg.source_ = source;
+    std::map<std::string, std::vector<std::string>> known;
+    for (const auto& l : parseIni(readFile(defaultsPath), defaultsPath)) {
+        cfg.set(l.section, l.key, l.value);
+        known[l.section].push_back(l.key);
+    }
+    const auto checkKnown = [&](const std::string& where, const std::string& section,
+                                const std::string& key) {
+        const auto sec = known.find(section);
+        if (sec == known.end()) {
+            std::string valid;
+            for (const auto& [name, keys] : known) valid += (valid.empty() ? "" : ", ") + name;
+            throw InputError(where + "unknown section [" + section + "] (valid: " + valid + ")");
+        }
+        const bool isRequired = section == "experiment" &&
+                                std::count(requiredExperimentKeys().begin(),
+                                           requiredExperimentKeys().end(), key);
+        if (!isRequired && std::count(sec->second.begin(), sec->second.end(), key) == 0) {
+            std::string valid;
+            for (const auto& k : sec->second) valid += (valid.empty() ? "" : ", ") + k;
+            if (section == "experiment")
+                for (const auto& k : requiredExperimentKeys()) valid += ", " + k;
+            throw InputError(where + "unknown key '" + key + "' in [" + section +
+                             "] (valid: " + valid + ")");
+        }
+    };
+    std::vector<std::string> given;
+    for (const auto& l : parseIni(text, source)) {
+        checkKnown(source + ":" + std::to_string(l.line) + ": ", l.section, l.key);
+        cfg.set(l.section, l.key, l.value);
+        if (l.section == "experiment") given.push_back(l.key);
+    }
+    for (const auto& o : overrides) {
+        const auto dot = o.find('.');
+        const auto eq = o.find('=');
+        if (dot == std::string::npos || eq == std::string::npos || dot > eq)
+            throw InputError("--set " + o + ": expected section.key=value");
+        const std::string section = trim(o.substr(0, dot));
+        const std::string key = trim(o.substr(dot + 1, eq - dot - 1));
+        checkKnown("--set " + o + ": ", section, key);
+        cfg.set(section, key, trim(o.substr(eq + 1)));
+        if (section == "experiment") given.push_back(key);
+    }
+    for (const auto& key : requiredExperimentKeys())
+        if (std::count(given.begin(), given.end(), key) == 0)
+            throw InputError(source + ": [experiment] " + key + ": required key is missing");
+    return cfg;
+}
+
+std::string ExperimentConfig::dump() const {
+    std::ostringstream out;
+    for (const auto& sec : sections_) {
+        out << "[" << sec.name << "]\n";
+        for (const auto& [key, value] : sec.entries) out << key << " = " << value << "\n";
+        out << "\n";
+    }
+    return out.str();
+}
+
+}  // namespace daep::mission

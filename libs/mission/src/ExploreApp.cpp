@@ -1,0 +1,126 @@
+#include "daep/mission/ExploreApp.h"
+
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+#include "daep/common/Error.h"
+#include "daep/mission/ExperimentConfig.h"
+#include "daep/mission/Mission.h"
+#include "daep/planning/Planner.h"
+#include "daep/world/WorldSpec.h"
+
+namespace daep::mission {
+namespace {
+
+Mission* g_running = nullptr;
+
+extern "C" void onInterrupt(int) {
+    if (g_running) g_running->requestStop();
+}
+
+std::string joined(const std::vector<std::string>& v) {
+    std::string out;
+    for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
+    return out;
+}
+
+void printSummary(const eval::RunSummary& s, const std::string& dir) {
+    std::cout << std::fixed << std::setprecision(2) << "\n== Result (" << dir << ")\n"
+              << "  coverage C          " << s.coveragePercent << " %  (" << s.knownVolume
+              << " of " << s.boxVolume << " m^3)\n"
+              << "  exploration time T  " << s.explorationTime << " s\n"
+              << "  path length PL      " << s.pathLength << " m\n"
+              << "  planning time PT    " << s.planningTime << " s  (median " << s.planMsMedian
+              << " ms, p95 " << s.planMsP95 << " ms per call)\n"
+              << "  collisions NOC      " << s.collisions << "  (static: " << s.staticCollisions
+              << ")\n"
+              << "  plans               " << s.iterations << "\n"
+              << "  finished            " << (s.finished ? "yes" : "no") << " (" << s.endReason
+              << ")\n"
+              << "  wall time           " << s.wallTime << " s  ("
+              << (s.wallTime > 0 ? (s.explorationTime / s.wallTime) : 0.0)
+              << " x real time)\n";
+}
+
+}  // namespace
+
+std::string ExploreApp::usage() {
+    return "usage: daep-explore CONFIG.ini [--set section.key=value ...] [--out DIR] [--quiet]\n"
+           "       daep-explore --list-worlds | --list-planners | --help\n"
+           "\n"
+           "Runs one exploration mission in the built-in simulator and writes summary.json,\n"
+           "timeseries.csv, trajectory.csv, plans.csv, collisions.csv, timing.json, config.ini\n"
+           "and map.bt to DIR (default: out/<CONFIG name>).\n";
+}
+
+bool ExploreApp::initialize(int argc, const char* const* argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        const auto needValue = [&](const std::string& flag) {
+            if (i + 1 >= argc) throw InputError(flag + ": missing value");
+            return std::string(argv[++i]);
+        };
+        if (arg == "--help" || arg == "-h") {
+            std::cout << usage();
+            return false;
+        } else if (arg == "--list-worlds") {
+            std::cout << joined(world::builtinWorldNames()) << "\n";
+            return false;
+        } else if (arg == "--list-planners") {
+            std::cout << joined(planning::plannerNames()) << "\n";
+            return false;
+        } else if (arg == "--set") {
+            overrides_.push_back(needValue(arg));
+        } else if (arg.rfind("--set=", 0) == 0) {
+            overrides_.push_back(arg.substr(6));
+        } else if (arg == "--out") {
+            outputDir_ = needValue(arg);
+        } else if (arg == "--quiet" || arg == "-q") {
+            quiet_ = true;
+        } else if (!arg.empty() && arg[0] == '-') {
+            throw InputError("unknown option " + arg + "\n" + usage());
+        } else if (configPath_.empty()) {
+            configPath_ = arg;
+        } else {
+            throw InputError("more than one config file given: " + configPath_ + ", " + arg);
+        }
+    }
+    if (configPath_.empty()) throw InputError("no config file given\n" + usage());
+    if (outputDir_.empty())
+        outputDir_ = "out/" + std::filesystem::path(configPath_).stem().string();
+    return true;
+}
+
+int ExploreApp::run() {
+    try {
+        const ExperimentConfig config = ExperimentConfig::fromFile(configPath_, overrides_);
+        if (!quiet_) std::cout << "# Effective parameters (" << configPath_ << ")\n" << config.dump();
+        Mission mission(config, outputDir_, quiet_ ? nullptr : &std::cout);
+        std::ofstream(outputDir_ + "/config.ini") << config.dump();
+        g_running = &mission;
+        const auto previous = std::signal(SIGINT, onInterrupt);
+        try {
+            summary_ = mission.run();
+        } catch (...) {
+            std::signal(SIGINT, previous);
+            g_running = nullptr;
+            throw;
+        }
+        std::signal(SIGINT, previous);
+        g_running = nullptr;
+        printSummary(summary_, outputDir_);
+        return summary_.endReason == "interrupted" ? 130 : 0;
+    } catch (const InputError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    }
+}
+
+}  // namespace daep::mission

@@ -1,0 +1,375 @@
+#include "daep/mission/Mission.h"
+
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <chrono>
+#include <exception>
+#include <filesystem>
+#include <cmath>
+#include <iomanip>
+#include <ostream>
+#include <random>
+#include <sstream>
+
+#include "ComponentParams.h"
+#include "daep/common/Config.h"
+#include "daep/common/Error.h"
+#include "daep/eval/Statistics.h"
+#include "daep/mapping/ExplorationMap.h"
+#include "daep/mission/ExperimentConfig.h"
+#include "daep/planning/Planner.h"
+#include "daep/sim/CollisionMonitor.h"
+#include "daep/sim/DepthCamera.h"
+#include "daep/sim/Drone.h"
+#include "daep/world/People.h"
+#include "daep/world/RayCaster.h"
+#include "daep/world/WorldSpec.h"
+
+namespace daep::mission {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/** Collision checks must not skip through a person: bound the simulation step. */
+constexpr double kMaxStep = 0.05;
+constexpr double kEps = 1e-9;
+
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct Settings {
+    std::string worldName, mode, plannerName, planningTime;
+    int start = 0;
+    std::uint64_t seed = 0;
+    double maxTime = 0, planningFixed = 0, climb = 0, sampleEvery = 0, progressEvery = 0;
+    int maxFailedPlans = 0;
+};
+
+Settings loadSettings(const ExperimentConfig& experiment) {
+    const ConfigReader r(experiment.config(), "experiment", experiment.source());
+    Settings s;
+    s.worldName = r.requireString("world");
+    s.mode = r.requireString("mode");
+    if (s.mode != "static" && s.mode != "dynamic")
+        throw InputError(experiment.source() + ": [experiment] mode: '" + s.mode +
+                         "' is not one of static, dynamic");
+    s.plannerName = r.requireString("planner");
+    s.start = r.requireInt("start");
+    const std::string seedText = r.requireString("seed");
+    try {
+        std::size_t used = 0;
+        s.seed = std::stoull(seedText, &used);
+        if (used != seedText.size()) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+        throw InputError(experiment.source() + ": [experiment] seed: '" + seedText +
+                         "' is not a non-negative integer");
+    }
+    s.maxTime = r.requireDouble("max_time_s");
+    if (s.maxTime <= 0) throw InputError(experiment.source() + ": [experiment] max_time_s: must be > 0");
+    s.planningTime = r.requireString("planning_time");
+    if (s.planningTime != "measured" && s.planningTime != "fixed")
+        throw InputError(experiment.source() + ": [experiment] planning_time: '" + s.planningTime +
+                         "' is not one of measured, fixed");
+    s.planningFixed = r.requireDouble("planning_fixed_s");
+    s.climb = r.requireDouble("climb_m");
+    s.sampleEvery = r.requireDouble("timeseries_every_s");
+    if (s.sampleEvery <= 0) throw InputError("[experiment] timeseries_every_s: must be > 0");
+    s.progressEvery = r.requireDouble("progress_every_s");
+    s.maxFailedPlans = r.requireInt("max_failed_plans");
+    return s;
+}
+
+/** A world given as a relative path is looked up next to the experiment file first. */
+std::string worldPath(const Settings& s, const std::string& experimentSource) {
+    const std::filesystem::path besideConfig =
+        std::filesystem::path(experimentSource).parent_path() / s.worldName;
+    if (std::filesystem::path(s.worldName).is_relative() &&
+        std::filesystem::is_regular_file(besideConfig))
+        return besideConfig.string();
+    return world::resolveWorldPath(s.worldName);
+}
+
+world::WorldSpec loadWorld(const Settings& s, const std::string& experimentSource) {
+    world::WorldSpec w = world::loadWorldFile(worldPath(s, experimentSource));
+    if (s.mode == "static") w.people.clear();
+    if (s.start < 0 || s.start >= static_cast<int>(w.starts.size()))
+        throw InputError("[experiment] start: " + std::to_string(s.start) + " is out of range 0.." +
+                         std::to_string(static_cast<int>(w.starts.size()) - 1) + " for world " +
+                         w.name);
+    return w;
+}
+
+std::string formatPoint(const Eigen::Vector3d& p) {
+    std::ostringstream o;
+    o << std::fixed << std::setprecision(2) << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+    return o.str();
+}
+
+}  // namespace
+
+struct Mission::Impl {
+    Impl(const ExperimentConfig& config, const std::string& outputDir, std::ostream* logStream)
+        : settings(loadSettings(config)),
+          world(loadWorld(settings, config.source())),
+          people(world.people, loadPeopleParams(config.config())),
+          caster(world),
+          statics(world),
+          camera(loadCameraParams(config.config())),
+          drone(loadDroneParams(config.config()), startPose()),
+          monitor(drone.params().boxSize, people.params().bodySize, &statics),
+          map(loadMapParams(config.config()), world.explorationBox),
+          planner(planning::createPlanner(settings.plannerName, config.config(),
+                                          settings.seed * 0x9E3779B97F4A7C15ull + 1)),
+          noiseRng(settings.seed),
+          log(logStream),
+          recorder(outputDir) {
+        checkStartIsFree();
+        framePeriod = 1.0 / camera.params().rateHz;
+    }
+
+    FlatPose startPose() const {
+        FlatPose p;
+        p.position = world.starts[settings.start];
+        return p;
+    }
+
+    void checkStartIsFree() const {
+        const Eigen::Vector3d s = world.starts[settings.start];
+        const Eigen::Vector3d top = s + Eigen::Vector3d(0, 0, settings.climb);
+        const Eigen::Vector3d size = drone.params().boxSize;
+        for (double f = 0; f <= 1.0 + kEps; f += 0.1) {
+            const Eigen::Vector3d p = s + f * (top - s);
+            if (statics.overlaps(p, size, 0.0))
+                throw InputError(world.sourceFile + ": start " + std::to_string(settings.start) +
+                                 " " + formatPoint(s) + ": the drone box at " + formatPoint(p) +
+                                 " (take-off) is inside static geometry");
+        }
+        if (!world.explorationBox.contains(top))
+            throw InputError(world.sourceFile + ": start " + std::to_string(settings.start) +
+                             " " + formatPoint(s) + ": after the climb the drone is outside the "
+                             "exploration box");
+    }
+
+    bool exploring() const { return exploreStart >= 0; }
+    double explorationTime() const { return exploring() ? t - exploreStart : 0.0; }
+    bool timeUp() const { return exploring() && explorationTime() >= settings.maxTime - kEps; }
+    bool stopping() const { return timeUp() || (stopFlag && *stopFlag); }
+
+    void captureFrame() {
+        if (!world.people.empty()) caster.setPeople(people.states(), people.params().bodySize);
+        camera.render(caster, drone.pose(), t, noiseRng, frame);
+        map.insertObservation(frame, drone.pose());
+        recorder.addPose(explorationTime(), drone.pose());
+    }
+
+    void recordDueSamples() {
+        while (exploring() && explorationTime() + kEps >= nextSample) {
+            eval::MetricsSample s;
+            s.time = nextSample;
+            s.coveragePercent = 100.0 * map.coverage();
+            s.pathLength = pathLength;
+            s.planningTime = planningCharged;
+            s.collisions = monitor.personCollisions();
+            recorder.addSample(s);
+            nextSample += settings.sampleEvery;
+            printProgressIfDue(s);
+        }
+    }
+
+    void printProgressIfDue(const eval::MetricsSample& s) {
+        if (!log || settings.progressEvery <= 0 || s.time + kEps < nextProgress) return;
+        nextProgress += settings.progressEvery;
+        *log << "[t " << std::fixed << std::setprecision(0) << std::setw(5) << s.time
+             << " s] coverage " << std::setprecision(1) << std::setw(5) << s.coveragePercent
+             << " %  path " << std::setw(6) << s.pathLength << " m  plans " << std::setw(4)
+             << iterations << "  collisions " << s.collisions << std::endl;
+    }
+
+    /**
+     * Advances the world by dt (or until the drone reaches its goal when flying); returns true
+     * when the drone reached its goal.
+     */
+    bool advance(double dt, bool flying) {
+        const double end = t + dt;
+        while (t < end - kEps && !stopping()) {
+            double h = std::min({end - t, nextFrame - t, kMaxStep});
+            if (exploring()) h = std::min(h, settings.maxTime - explorationTime());
+            h = std::max(h, 0.0);
+            bool reached = false;
+            if (flying) {
+                const Eigen::Vector3d before = drone.pose().position;
+                const double used = drone.advance(h);
+                reached = !drone.hasGoal();
+                h = used;
+                if (exploring()) pathLength += (drone.pose().position - before).norm();
+            }
+            people.advance(h);
+            t += h;
+            monitor.update(t, drone.pose(), people.states());
+            if (t >= nextFrame - kEps) {
+                captureFrame();
+                nextFrame += framePeriod;
+            }
+            recordDueSamples();
+            if (reached) return true;
+        }
+        return false;
+    }
+
+    void flyTo(const FlatPose& goal) {
+        drone.setGoal(goal);
+        while (drone.hasGoal() && !stopping()) advance(framePeriod, true);
+        drone.clearGoal();
+    }
+
+    void takeOffAndLookAround() {
+        captureFrame();
+        nextFrame = framePeriod;
+        FlatPose goal = drone.pose();
+        goal.position.z() += settings.climb;
+        flyTo(goal);
+        for (int quarter = 1; quarter <= 4; ++quarter) {
+            goal.yaw = wrapAngle(quarter * M_PI / 2.0);
+            flyTo(goal);
+        }
+    }
+
+    planning::Plan planOnce() {
+        planning::PlanningContext ctx;
+        ctx.time = t;
+        ctx.pose = drone.pose();
+        ctx.map = &map;
+        ctx.explorationBox = world.explorationBox;
+        ctx.motion.speed = drone.params().speed;
+        ctx.motion.yawRate = drone.params().yawRate;
+        const auto t0 = Clock::now();
+        planning::Plan plan = planner->plan(ctx);
+        const double wall = secondsSince(t0);
+        const double charged = settings.planningTime == "fixed" ? settings.planningFixed : wall;
+        ++iterations;
+        planningCharged += charged;
+        recorder.addPlan(explorationTime(), charged, wall,
+                         plan.status == planning::Plan::Status::Finished ? "finished" : "path",
+                         plan.gain, static_cast<int>(plan.waypoints.size()));
+        advance(charged, false);  // hover while planning: people keep walking
+        return plan;
+    }
+
+    void explore() {
+        int failedPlans = 0;
+        while (!stopping()) {
+            const planning::Plan plan = planOnce();
+            if (plan.status == planning::Plan::Status::Finished) {
+                finished = true;
+                endReason = "planner finished: " + plan.reason;
+                return;
+            }
+            if (plan.waypoints.empty()) {
+                if (++failedPlans >= settings.maxFailedPlans) {
+                    endReason = "planner returned no path " + std::to_string(failedPlans) +
+                                " times in a row";
+                    return;
+                }
+                continue;
+            }
+            failedPlans = 0;
+            for (const auto& wp : plan.waypoints) {
+                if (stopping()) break;
+                flyTo(wp.pose);
+            }
+            recorder.flush();
+        }
+        endReason = timeUp() ? "time limit" : "interrupted";
+    }
+
+    eval::RunSummary summarize(double wallTime) {
+        for (const auto& e : monitor.events()) recorder.addCollision(e.personIndex, e.start, e.end);
+        std::vector<double> ms;
+        for (double s : recorder.chargedPlanTimes()) ms.push_back(1e3 * s);
+        eval::RunSummary s;
+        s.coveragePercent = 100.0 * map.coverage();
+        s.explorationTime = explorationTime();
+        s.pathLength = pathLength;
+        s.planningTime = planningCharged;
+        s.planMsMedian = eval::median(ms);
+        s.planMsP95 = eval::percentile(ms, 95);
+        s.collisions = monitor.personCollisions();
+        s.staticCollisions = monitor.staticCollisions();
+        s.iterations = iterations;
+        s.finished = finished;
+        s.endReason = endReason;
+        s.wallTime = wallTime;
+        s.knownVolume = map.knownVolumeInBox();
+        s.boxVolume = world.explorationBox.volume();
+        s.labels = {{"world", world.name},
+                    {"mode", settings.mode},
+                    {"planner", settings.plannerName},
+                    {"start", std::to_string(settings.start)},
+                    {"seed", std::to_string(settings.seed)}};
+        return s;
+    }
+
+    Settings settings;
+    world::WorldSpec world;
+    world::PeopleSimulator people;
+    world::RayCaster caster;
+    world::StaticCollisionChecker statics;
+    sim::DepthCamera camera;
+    sim::Drone drone;
+    sim::CollisionMonitor monitor;
+    mapping::ExplorationMap map;
+    std::unique_ptr<planning::ExplorationPlanner> planner;
+    std::mt19937_64 noiseRng;
+    std::ostream* log;
+    eval::RunRecorder recorder;
+    mrpt::obs::CObservation3DRangeScan frame;
+    const std::atomic<bool>* stopFlag = nullptr;
+
+    double t = 0.0;
+    double framePeriod = 0.1;
+    double nextFrame = 0.0;
+    double exploreStart = -1.0;
+    double nextSample = 0.0;
+    double nextProgress = 0.0;
+    double pathLength = 0.0;
+    double planningCharged = 0.0;
+    int iterations = 0;
+    bool finished = false;
+    std::string endReason;
+};
+
+Mission::Mission(const ExperimentConfig& config, const std::string& outputDir, std::ostream* log)
+    : impl_(std::make_unique<Impl>(config, outputDir, log)) {
+    impl_->stopFlag = &stopRequested_;
+}
+
+Mission::~Mission() = default;
+
+eval::RunSummary Mission::run() {
+    Impl& m = *impl_;
+    const auto t0 = Clock::now();
+    std::exception_ptr failure;
+    try {
+        m.takeOffAndLookAround();
+        m.exploreStart = m.t;
+        m.recordDueSamples();
+        if (!stopRequested_) m.explore();
+    } catch (const std::exception& e) {
+        // Keep what the run produced so far: the outputs below are still written.
+        failure = std::current_exception();
+        m.endReason = std::string("error: ") + e.what();
+    }
+    if (m.endReason.empty()) m.endReason = "interrupted";
+    const eval::RunSummary summary = m.summarize(secondsSince(t0));
+    m.recorder.flush();
+    m.recorder.writeSummary(summary);
+    m.recorder.writeTiming(summary.wallTime, m.t);
+    m.recorder.writeCollisions();
+    if (!m.map.writeBinary(m.recorder.path("map.bt")))
+        throw std::runtime_error("cannot write " + m.recorder.path("map.bt"));
+    if (failure) std::rethrow_exception(failure);
+    return summary;
+}
+
+}  // namespace daep::mission

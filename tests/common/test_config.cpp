@@ -1,0 +1,76 @@
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <cmath>
+#include <functional>
+
+#include "daep/common/Config.h"
+#include "daep/common/Error.h"
+#include "daep/common/Types.h"
+
+using daep::ConfigReader;
+using daep::InputError;
+
+namespace {
+
+mrpt::config::CConfigFileMemory makeConfig() {
+    mrpt::config::CConfigFileMemory cfg;
+    cfg.write("cam", "width", "640");
+    cfg.write("cam", "fov_deg", "90");
+    cfg.write("cam", "noise", "0.5");
+    cfg.write("cam", "enabled", "true");
+    cfg.write("cam", "bad", "12abc");
+    cfg.write("cam", "name", "depth");
+    return cfg;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(ConfigReader, ReadsTypedValues) {
+    const auto cfg = makeConfig();
+    const ConfigReader r(cfg, "cam", "test.ini");
+    EXPECT_EQ(r.requireInt("width"), 640);
+    EXPECT_DOUBLE_EQ(r.requireDouble("noise"), 0.5);
+    EXPECT_NEAR(r.requireAngleDeg("fov_deg"), M_PI / 2, 1e-12);
+    EXPECT_TRUE(r.requireBool("enabled"));
+    EXPECT_EQ(r.requireString("name"), "depth");
+    EXPECT_EQ(r.getInt("absent", 3), 3);
+}
+
+TEST(ConfigReader, MissingAndMalformedKeysNameSourceSectionAndKey) {
+    const auto cfg = makeConfig();
+    const ConfigReader r(cfg, "cam", "test.ini");
+    const std::string missing = errorOf([&] { r.requireDouble("height"); });
+    EXPECT_NE(missing.find("test.ini"), std::string::npos);
+    EXPECT_NE(missing.find("[cam] height"), std::string::npos);
+    EXPECT_NE(missing.find("missing"), std::string::npos);
+    EXPECT_NE(errorOf([&] { r.requireDouble("bad"); }).find("12abc"), std::string::npos);
+    EXPECT_NE(errorOf([&] { r.requireInt("noise"); }).find("not an integer"), std::string::npos);
+    EXPECT_NE(errorOf([&] { r.requireBool("name"); }).find("not a boolean"), std::string::npos);
+}
+
+TEST(Types, WrapAngleStaysInHalfOpenInterval) {
+    for (double a = -20.0; a <= 20.0; a += 0.37) {
+        const double w = daep::wrapAngle(a);
+        EXPECT_GT(w, -M_PI - 1e-12);
+        EXPECT_LE(w, M_PI + 1e-12);
+        EXPECT_NEAR(std::remainder(w - a, 2 * M_PI), 0.0, 1e-9);
+    }
+    EXPECT_NEAR(daep::wrapAngle(-M_PI), M_PI, 1e-12);
+}
+
+TEST(Types, AabbVolumeAndContainment) {
+    daep::Aabb box{{-7.5, -7.5, 0}, {7.5, 7.5, 2}};
+    EXPECT_DOUBLE_EQ(box.volume(), 450.0);
+    EXPECT_TRUE(box.contains({7.5, 0, 1}));
+    EXPECT_FALSE(box.contains({7.6, 0, 1}));
+}

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+namespace daep::test {
+
+struct AppResult {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+inline std::string readText(const std::filesystem::path& p) {
+    std::ifstream f(p);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+/** A fresh, empty directory under the system temp dir, private to this process. */
+inline std::filesystem::path freshDir(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("daep_e2e_" + std::to_string(::getpid()) + "_" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+/** Runs daep-explore with the arguments (already shell-quoted), capturing both streams. */
+inline AppResult runExplore(const std::string& args, const std::filesystem::path& scratch) {
+    const auto out = scratch / "stdout.txt";
+    const auto err = scratch / "stderr.txt";
+    const std::string cmd = std::string(DAEP_EXPLORE_BIN) + " " + args + " > " + out.string() +
+                            " 2> " + err.string();
+    const int status = std::system(cmd.c_str());
+    AppResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = readText(out);
+    r.err = readText(err);
+    return r;
+}
+
+/** The number after "key": in a flat JSON object; NaN if absent. */
+inline double jsonNumber(const std::string& json, const std::string& key) {
+    const auto at = json.find("\"" + key + "\":");
+    if (at == std::string::npos) return std::nan("");
+    return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
+}
+
+}  // namespace daep::test

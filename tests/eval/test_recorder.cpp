@@ -1,0 +1,90 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "daep/eval/RunRecorder.h"
+#include "daep/eval/Statistics.h"
+
+namespace fs = std::filesystem;
+using namespace daep::eval;
+
+namespace {
+std::string readText(const fs::path& p) {
+    std::ifstream f(p);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+fs::path tempDir(const std::string& name) {
+    return fs::temp_directory_path() / ("daep_eval_" + std::to_string(::getpid()) + "_" + name);
+}
+}  // namespace
+
+TEST(Statistics, PercentileInterpolatesLinearly) {
+    EXPECT_DOUBLE_EQ(median({3, 1, 2}), 2.0);
+    EXPECT_DOUBLE_EQ(median({1, 2, 3, 4}), 2.5);
+    EXPECT_DOUBLE_EQ(percentile({0, 10}, 95), 9.5);
+    EXPECT_DOUBLE_EQ(percentile({5}, 95), 5.0);
+    EXPECT_DOUBLE_EQ(percentile({}, 50), 0.0);
+    EXPECT_DOUBLE_EQ(percentile({1, 2, 3}, 100), 3.0);
+    EXPECT_DOUBLE_EQ(mean({1, 2, 3, 6}), 3.0);
+}
+
+TEST(Json, StringsAreEscaped) {
+    EXPECT_EQ(jsonString("a\"b\\c\nd"), "\"a\\\"b\\\\c\\nd\"");
+}
+
+TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
+    const auto dir = tempDir("rec");
+    fs::remove_all(dir);
+    {
+        RunRecorder rec((dir / "nested").string());
+        rec.addSample({0.0, 1.5, 0.0, 0.0, 0});
+        rec.addSample({1.0, 2.25, 0.5, 0.05, 1});
+        daep::FlatPose p;
+        p.position = {1, 2, 3};
+        p.yaw = 0.5;
+        rec.addPose(0.1, p);
+        rec.addPlan(0.0, 0.05, 0.001, "path", 12.5, 1);
+        rec.addCollision(2, 10.0, 11.5);
+        RunSummary s;
+        s.coveragePercent = 42.125;
+        s.collisions = 3;
+        s.finished = true;
+        s.endReason = "planner finished";
+        s.labels = {{"world", "cafe"}};
+        rec.flush();
+        rec.writeSummary(s);
+        rec.writeCollisions();
+        rec.writeTiming(2.0, 100.0);
+    }
+    const auto ts = readText(dir / "nested" / "timeseries.csv");
+    EXPECT_EQ(ts,
+              "t,coverage_percent,path_length_m,planning_time_s,collisions\n"
+              "0.000,1.5000,0.0000,0.0000,0\n1.000,2.2500,0.5000,0.0500,1\n");
+    EXPECT_EQ(readText(dir / "nested" / "trajectory.csv"),
+              "t,x,y,z,yaw\n0.100,1.0000,2.0000,3.0000,0.5000\n");
+    const auto summary = readText(dir / "nested" / "summary.json");
+    for (const char* key :
+         {"\"world\": \"cafe\"", "\"coverage_percent\": 42.1250", "\"collisions\": 3",
+          "\"finished\": true", "\"plan_ms_median\"", "\"plan_ms_p95\"", "\"wall_time_s\"",
+          "\"static_collisions\"", "\"iterations\"", "\"exploration_time_s\"",
+          "\"path_length_m\"", "\"planning_time_s\""})
+        EXPECT_NE(summary.find(key), std::string::npos) << key;
+    EXPECT_EQ(readText(dir / "nested" / "collisions.csv"), "person,start_s,end_s\n2,10.000,11.500\n");
+    EXPECT_NE(readText(dir / "nested" / "timing.json").find("\"speedup_vs_real_time\": 50.00"),
+              std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(RunRecorder, UnwritableDirectoryIsAClearError) {
+    try {
+        RunRecorder rec("/proc/daep_cannot_write_here");
+        FAIL() << "expected an exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("/proc/daep_cannot_write_here"), std::string::npos);
+    }
+}
