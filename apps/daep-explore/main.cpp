@@ -7,7 +7,8 @@
 int main(int argc, char** argv) {
     daep::mission::ExploreApp app;
     try {
-        if (!app.initialize(argc, argv)) return 0;
+        if (!app.initialize(argc, argv))
+            return 0;
     } catch (const daep::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 1;

@@ -1,11 +1,11 @@
 #pragma once
 
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 namespace daep::test {
 
@@ -35,8 +35,8 @@ inline std::filesystem::path freshDir(const std::string& name) {
 inline AppResult runExplore(const std::string& args, const std::filesystem::path& scratch) {
     const auto out = scratch / "stdout.txt";
     const auto err = scratch / "stderr.txt";
-    const std::string cmd = std::string(DAEP_EXPLORE_BIN) + " " + args + " > " + out.string() +
-                            " 2> " + err.string();
+    const std::string cmd =
+        std::string(DAEP_EXPLORE_BIN) + " " + args + " > " + out.string() + " 2> " + err.string();
     const int status = std::system(cmd.c_str());
     AppResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -48,7 +48,8 @@ inline AppResult runExplore(const std::string& args, const std::filesystem::path
 /** The number after "key": in a flat JSON object; NaN if absent. */
 inline double jsonNumber(const std::string& json, const std::string& key) {
     const auto at = json.find("\"" + key + "\":");
-    if (at == std::string::npos) return std::nan("");
+    if (at == std::string::npos)
+        return std::nan("");
     return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
 }
 

@@ -21,7 +21,8 @@ std::string deterministicSummary(const fs::path& dir) {
     std::istringstream in(readText(dir / "summary.json"));
     std::string line, out;
     while (std::getline(in, line))
-        if (line.find("wall_time_s") == std::string::npos) out += line + "\n";
+        if (line.find("wall_time_s") == std::string::npos)
+            out += line + "\n";
     return out;
 }
 
@@ -34,7 +35,8 @@ std::vector<std::vector<double>> readCsv(const fs::path& p) {
         std::vector<double> row;
         std::istringstream cells(line);
         std::string cell;
-        while (std::getline(cells, cell, ',')) row.push_back(std::strtod(cell.c_str(), nullptr));
+        while (std::getline(cells, cell, ','))
+            row.push_back(std::strtod(cell.c_str(), nullptr));
         rows.push_back(row);
     }
     return rows;
@@ -92,17 +94,18 @@ TEST(ExploreApp, TinyRoomMissionWritesAllOutputsWithPlausibleMetrics) {
 TEST(ExploreApp, SameSeedAndFixedPlanningTimeIsBitForBitReproducible) {
     const auto dir = freshDir("repro");
     for (const char* run : {"a", "b"}) {
-        const auto r = runExplore(kTinyIni + " --quiet --set experiment.max_time_s=40 --out " +
-                                      (dir / run).string(),
-                                  dir);
+        const auto r = runExplore(
+            kTinyIni + " --quiet --set experiment.max_time_s=40 --out " + (dir / run).string(),
+            dir);
         ASSERT_EQ(r.exitCode, 0) << r.err;
     }
     EXPECT_EQ(deterministicSummary(dir / "a"), deterministicSummary(dir / "b"));
     EXPECT_EQ(readText(dir / "a" / "timeseries.csv"), readText(dir / "b" / "timeseries.csv"));
     EXPECT_EQ(readText(dir / "a" / "trajectory.csv"), readText(dir / "b" / "trajectory.csv"));
 
-    const auto r = runExplore(kTinyIni + " --quiet --set experiment.max_time_s=40 "
-                                         "--set experiment.seed=8 --out " +
+    const auto r = runExplore(kTinyIni +
+                                  " --quiet --set experiment.max_time_s=40 "
+                                  "--set experiment.seed=8 --out " +
                                   (dir / "c").string(),
                               dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -161,21 +164,23 @@ const std::string kTinyWorld = std::string(DAEP_E2E_DATA) + "/tiny_room.yaml";
 
 std::vector<BadInputCase> badInputCases() {
     std::vector<BadInputCase> cases;
-    cases.push_back({"unknown_world", kTinyIni + " --set experiment.world=atlantis",
+    cases.push_back({"unknown_world",
+                     kTinyIni + " --set experiment.world=atlantis",
                      {"atlantis", "exhibition", "cafe"}});
-    cases.push_back({"unknown_planner", kTinyIni + " --set experiment.planner=magic",
-                     {"magic", "rhnbvp"}});
+    cases.push_back(
+        {"unknown_planner", kTinyIni + " --set experiment.planner=magic", {"magic", "rhnbvp"}});
     cases.push_back({"typo_key", kTinyIni + " --set camera.widht=10", {"widht", "width"}});
-    cases.push_back({"bad_mode", kTinyIni + " --set experiment.mode=chaos",
-                     {"mode", "static", "dynamic"}});
+    cases.push_back(
+        {"bad_mode", kTinyIni + " --set experiment.mode=chaos", {"mode", "static", "dynamic"}});
     cases.push_back({"bad_number", kTinyIni + " --set camera.rate_hz=fast", {"[camera] rate_hz"}});
-    cases.push_back({"start_out_of_range", kTinyIni + " --set experiment.start=9",
-                     {"start", "0..4"}});
+    cases.push_back(
+        {"start_out_of_range", kTinyIni + " --set experiment.start=9", {"start", "0..4"}});
     cases.push_back({"missing_file", "/nonexistent/exp.ini", {"/nonexistent/exp.ini"}});
     {
-        const std::string ini = writeIni(
-            "missing_key", "[experiment]\nworld = cafe\nmode = static\nplanner = rhnbvp\n"
-                           "start = 0\nmax_time_s = 10\nplanning_time = fixed\n");
+        const std::string ini =
+            writeIni("missing_key",
+                     "[experiment]\nworld = cafe\nmode = static\nplanner = rhnbvp\n"
+                     "start = 0\nmax_time_s = 10\nplanning_time = fixed\n");
         cases.push_back({"missing_key", ini, {"missing_key.ini", "[experiment] seed", "missing"}});
     }
     {

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "daep/eval/RunRecorder.h"
 #include "daep/eval/Statistics.h"
@@ -66,15 +66,16 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
               "t,coverage_percent,path_length_m,planning_time_s,collisions\n"
               "0.000,1.5000,0.0000,0.0000,0\n1.000,2.2500,0.5000,0.0500,1\n");
     EXPECT_EQ(readText(dir / "nested" / "trajectory.csv"),
-              "t,x,y,z,yaw\n0.100,1.0000,2.0000,3.0000,0.5000\n");
+              "sim_time,x,y,z,yaw\n0.100,1.0000,2.0000,3.0000,0.5000\n");
     const auto summary = readText(dir / "nested" / "summary.json");
     for (const char* key :
          {"\"world\": \"cafe\"", "\"coverage_percent\": 42.1250", "\"collisions\": 3",
           "\"finished\": true", "\"plan_ms_median\"", "\"plan_ms_p95\"", "\"wall_time_s\"",
-          "\"static_collisions\"", "\"iterations\"", "\"exploration_time_s\"",
-          "\"path_length_m\"", "\"planning_time_s\""})
+          "\"static_collisions\"", "\"iterations\"", "\"exploration_time_s\"", "\"path_length_m\"",
+          "\"planning_time_s\""})
         EXPECT_NE(summary.find(key), std::string::npos) << key;
-    EXPECT_EQ(readText(dir / "nested" / "collisions.csv"), "person,start_s,end_s\n2,10.000,11.500\n");
+    EXPECT_EQ(readText(dir / "nested" / "collisions.csv"),
+              "person,start_s,end_s\n2,10.000,11.500\n");
     EXPECT_NE(readText(dir / "nested" / "timing.json").find("\"speedup_vs_real_time\": 50.00"),
               std::string::npos);
     fs::remove_all(dir);

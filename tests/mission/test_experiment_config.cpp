@@ -39,8 +39,8 @@ TEST(ExperimentConfig, LayersDefaultsFileAndOverrides) {
 }
 
 TEST(ExperimentConfig, InlineCommentsAreStripped) {
-    const auto cfg = ExperimentConfig::fromText(kMinimal + "[camera]\nwidth = 200  # narrower\n",
-                                                "exp.ini");
+    const auto cfg =
+        ExperimentConfig::fromText(kMinimal + "[camera]\nwidth = 200  # narrower\n", "exp.ini");
     EXPECT_EQ(cfg.config().read_int("camera", "width", 0), 200);
 }
 
@@ -50,7 +50,8 @@ TEST(ExperimentConfig, EveryRequiredExperimentKeyIsEnforced) {
         std::istringstream in(kMinimal);
         std::string line;
         while (std::getline(in, line))
-            if (line.rfind(key + " =", 0) != 0) text += line + "\n";
+            if (line.rfind(key + " =", 0) != 0)
+                text += line + "\n";
         const std::string err = errorOf(text);
         EXPECT_NE(err.find("[experiment] " + key), std::string::npos) << key << ": " << err;
     }

@@ -20,14 +20,17 @@ ConfigReader::ConfigReader(const mrpt::config::CConfigFileBase& cfg, std::string
                            std::string source)
     : cfg_(cfg), section_(std::move(section)), source_(std::move(source)) {}
 
-bool ConfigReader::has(const std::string& key) const { return cfg_.keyExists(section_, key); }
+bool ConfigReader::has(const std::string& key) const {
+    return cfg_.keyExists(section_, key);
+}
 
 void ConfigReader::fail(const std::string& key, const std::string& what) const {
     throw InputError(source_ + ": [" + section_ + "] " + key + ": " + what);
 }
 
 std::string ConfigReader::raw(const std::string& key) const {
-    if (!has(key)) fail(key, "required key is missing");
+    if (!has(key))
+        fail(key, "required key is missing");
     std::string v = cfg_.read_string(section_, key, "", false);
     const auto b = v.find_first_not_of(" \t");
     const auto e = v.find_last_not_of(" \t\r");
@@ -38,7 +41,8 @@ double ConfigReader::requireDouble(const std::string& key) const {
     const std::string v = raw(key);
     std::istringstream is(v);
     double d = 0;
-    if (!(is >> d) || !is.eof() || !std::isfinite(d)) fail(key, "'" + v + "' is not a number");
+    if (!(is >> d) || !is.eof() || !std::isfinite(d))
+        fail(key, "'" + v + "' is not a number");
     return d;
 }
 
@@ -46,20 +50,24 @@ int ConfigReader::requireInt(const std::string& key) const {
     const std::string v = raw(key);
     std::istringstream is(v);
     long long i = 0;
-    if (!(is >> i) || !is.eof()) fail(key, "'" + v + "' is not an integer");
+    if (!(is >> i) || !is.eof())
+        fail(key, "'" + v + "' is not an integer");
     return static_cast<int>(i);
 }
 
 bool ConfigReader::requireBool(const std::string& key) const {
     const std::string v = raw(key);
-    if (v == "true" || v == "1" || v == "yes" || v == "on") return true;
-    if (v == "false" || v == "0" || v == "no" || v == "off") return false;
+    if (v == "true" || v == "1" || v == "yes" || v == "on")
+        return true;
+    if (v == "false" || v == "0" || v == "no" || v == "off")
+        return false;
     fail(key, "'" + v + "' is not a boolean (true|false)");
 }
 
 std::string ConfigReader::requireString(const std::string& key) const {
     const std::string v = raw(key);
-    if (v.empty()) fail(key, "value is empty");
+    if (v.empty())
+        fail(key, "value is empty");
     return v;
 }
 
@@ -81,7 +89,8 @@ double ConfigReader::requireAngleDeg(const std::string& keyDeg) const {
 }
 
 std::string shareDirectory() {
-    if (const char* env = std::getenv("DAEP_SHARE_DIR"); env && *env) return env;
+    if (const char* env = std::getenv("DAEP_SHARE_DIR"); env && *env)
+        return env;
     return DAEP_SHARE_DIR;
 }
 

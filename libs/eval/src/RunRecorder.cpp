@@ -10,13 +10,15 @@ namespace {
 
 std::FILE* openForWriting(const std::string& path, const char* header) {
     std::FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + path);
+    if (!f)
+        throw std::runtime_error("cannot write " + path);
     std::fputs(header, f);
     return f;
 }
 
 void closeFile(std::FILE*& f) {
-    if (f) std::fclose(f);
+    if (f)
+        std::fclose(f);
     f = nullptr;
 }
 
@@ -26,10 +28,18 @@ std::string jsonString(const std::string& s) {
     std::string out = "\"";
     for (const char c : s) {
         switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\t': out += "\\t"; break;
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
             default:
                 if (static_cast<unsigned char>(c) < 0x20) {
                     char buf[8];
@@ -46,12 +56,13 @@ std::string jsonString(const std::string& s) {
 RunRecorder::RunRecorder(const std::string& directory) : directory_(directory) {
     std::error_code ec;
     std::filesystem::create_directories(directory_, ec);
-    if (ec) throw std::runtime_error("cannot create output directory " + directory_ + ": " + ec.message());
+    if (ec)
+        throw std::runtime_error("cannot create output directory " + directory_ + ": " +
+                                 ec.message());
     timeseries_ = openForWriting(path("timeseries.csv"),
                                  "t,coverage_percent,path_length_m,planning_time_s,collisions\n");
-    trajectory_ = openForWriting(path("trajectory.csv"), "t,x,y,z,yaw\n");
-    plans_ = openForWriting(path("plans.csv"),
-                            "t,charged_s,status,gain,waypoints\n");
+    trajectory_ = openForWriting(path("trajectory.csv"), "sim_time,x,y,z,yaw\n");
+    plans_ = openForWriting(path("plans.csv"), "t,charged_s,status,gain,waypoints\n");
 }
 
 RunRecorder::~RunRecorder() {
@@ -75,8 +86,8 @@ void RunRecorder::addPose(double time, const FlatPose& p) {
                  p.position.z(), p.yaw);
 }
 
-void RunRecorder::addPlan(double time, double chargedSec, double wallSec,
-                          const std::string& status, double gain, int waypoints) {
+void RunRecorder::addPlan(double time, double chargedSec, double wallSec, const std::string& status,
+                          double gain, int waypoints) {
     chargedPlanTimes_.push_back(chargedSec);
     wallPlanTimes_.push_back(wallSec);
     std::fprintf(plans_, "%.3f,%.6f,%s,%.4f,%d\n", time, chargedSec, status.c_str(), gain,
@@ -96,7 +107,8 @@ void RunRecorder::flush() {
 void RunRecorder::writeSummary(const RunSummary& s) const {
     const std::string file = path("summary.json");
     std::FILE* f = std::fopen(file.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + file);
+    if (!f)
+        throw std::runtime_error("cannot write " + file);
     std::fprintf(f, "{\n");
     for (const auto& [key, value] : s.labels)
         std::fprintf(f, "  %s: %s,\n", jsonString(key).c_str(), jsonString(value).c_str());
@@ -113,6 +125,7 @@ void RunRecorder::writeSummary(const RunSummary& s) const {
     std::fprintf(f, "  \"end_reason\": %s,\n", jsonString(s.endReason).c_str());
     std::fprintf(f, "  \"known_volume_m3\": %.4f,\n", s.knownVolume);
     std::fprintf(f, "  \"box_volume_m3\": %.4f,\n", s.boxVolume);
+    std::fprintf(f, "  \"exploration_start_s\": %.3f,\n", s.explorationStart);
     std::fprintf(f, "  \"wall_time_s\": %.3f\n", s.wallTime);
     std::fprintf(f, "}\n");
     std::fclose(f);
@@ -121,10 +134,12 @@ void RunRecorder::writeSummary(const RunSummary& s) const {
 void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec) const {
     const std::string file = path("timing.json");
     std::FILE* f = std::fopen(file.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + file);
+    if (!f)
+        throw std::runtime_error("cannot write " + file);
     std::vector<double> ms;
     ms.reserve(wallPlanTimes_.size());
-    for (double s : wallPlanTimes_) ms.push_back(1e3 * s);
+    for (double s : wallPlanTimes_)
+        ms.push_back(1e3 * s);
     std::fprintf(f, "{\n");
     std::fprintf(f, "  \"plan_calls\": %zu,\n", ms.size());
     std::fprintf(f, "  \"plan_wall_ms_median\": %.4f,\n", median(ms));
@@ -140,7 +155,8 @@ void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec) const {
 
 void RunRecorder::writeCollisions() const {
     std::FILE* f = openForWriting(path("collisions.csv"), "person,start_s,end_s\n");
-    for (const auto& c : collisions_) std::fprintf(f, "%d,%.3f,%.3f\n", c.person, c.start, c.end);
+    for (const auto& c : collisions_)
+        std::fprintf(f, "%d,%.3f,%.3f\n", c.person, c.start, c.end);
     std::fclose(f);
 }
 

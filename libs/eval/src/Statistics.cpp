@@ -7,7 +7,8 @@
 namespace daep::eval {
 
 double percentile(std::vector<double> values, double pct) {
-    if (values.empty()) return 0.0;
+    if (values.empty())
+        return 0.0;
     std::sort(values.begin(), values.end());
     const double rank = std::clamp(pct, 0.0, 100.0) / 100.0 * (values.size() - 1);
     const auto lo = static_cast<std::size_t>(std::floor(rank));
@@ -17,7 +18,8 @@ double percentile(std::vector<double> values, double pct) {
 }
 
 double mean(const std::vector<double>& values) {
-    if (values.empty()) return 0.0;
+    if (values.empty())
+        return 0.0;
     return std::accumulate(values.begin(), values.end(), 0.0) / values.size();
 }
 

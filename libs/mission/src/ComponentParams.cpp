@@ -7,7 +7,8 @@ namespace {
 
 double requirePositive(const ConfigReader& r, const std::string& key) {
     const double v = r.requireDouble(key);
-    if (!(v > 0)) throw InputError("[" + r.section() + "] " + key + ": must be > 0");
+    if (!(v > 0))
+        throw InputError("[" + r.section() + "] " + key + ": must be > 0");
     return v;
 }
 
@@ -18,13 +19,16 @@ sim::CameraParams loadCameraParams(const mrpt::config::CConfigFileBase& cfg) {
     sim::CameraParams p;
     p.width = r.requireInt("width");
     p.height = r.requireInt("height");
-    if (p.width < 2 || p.height < 2) throw InputError("[camera] width/height: must be >= 2");
+    if (p.width < 2 || p.height < 2)
+        throw InputError("[camera] width/height: must be >= 2");
     p.hfovRad = r.requireAngleDeg("hfov_deg");
-    if (p.hfovRad <= 0 || p.hfovRad >= M_PI) throw InputError("[camera] hfov_deg: must be in (0, 180)");
+    if (p.hfovRad <= 0 || p.hfovRad >= M_PI)
+        throw InputError("[camera] hfov_deg: must be in (0, 180)");
     p.maxRange = requirePositive(r, "max_range");
     p.rateHz = requirePositive(r, "rate_hz");
     p.noiseSigma = r.requireDouble("noise_sigma");
-    if (p.noiseSigma < 0) throw InputError("[camera] noise_sigma: must be >= 0");
+    if (p.noiseSigma < 0)
+        throw InputError("[camera] noise_sigma: must be >= 0");
     return p;
 }
 
@@ -57,8 +61,10 @@ mapping::MapParams loadMapParams(const mrpt::config::CConfigFileBase& cfg) {
     p.probMiss = r.requireDouble("prob_miss");
     p.clampMin = r.requireDouble("clamp_min");
     p.clampMax = r.requireDouble("clamp_max");
-    if (p.probHit <= 0.5 || p.probHit >= 1) throw InputError("[map] prob_hit: must be in (0.5, 1)");
-    if (p.probMiss <= 0 || p.probMiss >= 0.5) throw InputError("[map] prob_miss: must be in (0, 0.5)");
+    if (p.probHit <= 0.5 || p.probHit >= 1)
+        throw InputError("[map] prob_hit: must be in (0.5, 1)");
+    if (p.probMiss <= 0 || p.probMiss >= 0.5)
+        throw InputError("[map] prob_miss: must be in (0, 0.5)");
     return p;
 }
 

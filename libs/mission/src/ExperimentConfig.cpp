@@ -20,7 +20,8 @@ struct IniLine {
 
 std::string trim(const std::string& s) {
     const auto b = s.find_first_not_of(" \t\r");
-    if (b == std::string::npos) return {};
+    if (b == std::string::npos)
+        return {};
     return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
 }
 
@@ -39,18 +40,23 @@ std::vector<IniLine> parseIni(const std::string& text, const std::string& source
     std::string raw, section;
     for (int lineNo = 1; std::getline(in, raw); ++lineNo) {
         const std::string line = trim(raw);
-        if (line.empty() || line[0] == '#' || line[0] == ';') continue;
+        if (line.empty() || line[0] == '#' || line[0] == ';')
+            continue;
         const std::string where = source + ":" + std::to_string(lineNo) + ": ";
         if (line.front() == '[') {
-            if (line.back() != ']') throw InputError(where + "malformed section header '" + line + "'");
+            if (line.back() != ']')
+                throw InputError(where + "malformed section header '" + line + "'");
             section = trim(line.substr(1, line.size() - 2));
             continue;
         }
         const auto eq = line.find('=');
-        if (eq == std::string::npos) throw InputError(where + "expected 'key = value', got '" + line + "'");
-        if (section.empty()) throw InputError(where + "key outside any [section]");
+        if (eq == std::string::npos)
+            throw InputError(where + "expected 'key = value', got '" + line + "'");
+        if (section.empty())
+            throw InputError(where + "key outside any [section]");
         const std::string key = trim(line.substr(0, eq));
-        if (key.empty()) throw InputError(where + "empty key");
+        if (key.empty())
+            throw InputError(where + "empty key");
         out.push_back({section, key, trim(stripComment(line.substr(eq + 1))), lineNo});
     }
     return out;
@@ -58,7 +64,8 @@ std::vector<IniLine> parseIni(const std::string& text, const std::string& source
 
 std::string readFile(const std::string& path) {
     std::ifstream f(path);
-    if (!f) throw InputError(path + ": cannot open file");
+    if (!f)
+        throw InputError(path + ": cannot open file");
     std::ostringstream ss;
     ss << f.rdbuf();
     return ss.str();
@@ -80,7 +87,9 @@ const std::vector<std::string>& ExperimentConfig::requiredExperimentKeys() {
     return keys;
 }
 
-const mrpt::config::CConfigFileBase& ExperimentConfig::config() const { return impl_->memory; }
+const mrpt::config::CConfigFileBase& ExperimentConfig::config() const {
+    return impl_->memory;
+}
 
 void ExperimentConfig::set(const std::string& section, const std::string& key,
                            const std::string& value) {
@@ -119,17 +128,20 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
         const auto sec = known.find(section);
         if (sec == known.end()) {
             std::string valid;
-            for (const auto& [name, keys] : known) valid += (valid.empty() ? "" : ", ") + name;
+            for (const auto& [name, keys] : known)
+                valid += (valid.empty() ? "" : ", ") + name;
             throw InputError(where + "unknown section [" + section + "] (valid: " + valid + ")");
         }
-        const bool isRequired = section == "experiment" &&
-                                std::count(requiredExperimentKeys().begin(),
-                                           requiredExperimentKeys().end(), key);
+        const bool isRequired =
+            section == "experiment" &&
+            std::count(requiredExperimentKeys().begin(), requiredExperimentKeys().end(), key);
         if (!isRequired && std::count(sec->second.begin(), sec->second.end(), key) == 0) {
             std::string valid;
-            for (const auto& k : sec->second) valid += (valid.empty() ? "" : ", ") + k;
+            for (const auto& k : sec->second)
+                valid += (valid.empty() ? "" : ", ") + k;
             if (section == "experiment")
-                for (const auto& k : requiredExperimentKeys()) valid += ", " + k;
+                for (const auto& k : requiredExperimentKeys())
+                    valid += ", " + k;
             throw InputError(where + "unknown key '" + key + "' in [" + section +
                              "] (valid: " + valid + ")");
         }
@@ -138,7 +150,8 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
     for (const auto& l : parseIni(text, source)) {
         checkKnown(source + ":" + std::to_string(l.line) + ": ", l.section, l.key);
         cfg.set(l.section, l.key, l.value);
-        if (l.section == "experiment") given.push_back(l.key);
+        if (l.section == "experiment")
+            given.push_back(l.key);
     }
     for (const auto& o : overrides) {
         const auto dot = o.find('.');
@@ -149,7 +162,8 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
         const std::string key = trim(o.substr(dot + 1, eq - dot - 1));
         checkKnown("--set " + o + ": ", section, key);
         cfg.set(section, key, trim(o.substr(eq + 1)));
-        if (section == "experiment") given.push_back(key);
+        if (section == "experiment")
+            given.push_back(key);
     }
     for (const auto& key : requiredExperimentKeys())
         if (std::count(given.begin(), given.end(), key) == 0)
@@ -161,7 +175,8 @@ std::string ExperimentConfig::dump() const {
     std::ostringstream out;
     for (const auto& sec : sections_) {
         out << "[" << sec.name << "]\n";
-        for (const auto& [key, value] : sec.entries) out << key << " = " << value << "\n";
+        for (const auto& [key, value] : sec.entries)
+            out << key << " = " << value << "\n";
         out << "\n";
     }
     return out.str();

@@ -19,19 +19,21 @@ namespace {
 Mission* g_running = nullptr;
 
 extern "C" void onInterrupt(int) {
-    if (g_running) g_running->requestStop();
+    if (g_running)
+        g_running->requestStop();
 }
 
 std::string joined(const std::vector<std::string>& v) {
     std::string out;
-    for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
+    for (const auto& s : v)
+        out += (out.empty() ? "" : ", ") + s;
     return out;
 }
 
 void printSummary(const eval::RunSummary& s, const std::string& dir) {
     std::cout << std::fixed << std::setprecision(2) << "\n== Result (" << dir << ")\n"
-              << "  coverage C          " << s.coveragePercent << " %  (" << s.knownVolume
-              << " of " << s.boxVolume << " m^3)\n"
+              << "  coverage C          " << s.coveragePercent << " %  (" << s.knownVolume << " of "
+              << s.boxVolume << " m^3)\n"
               << "  exploration time T  " << s.explorationTime << " s\n"
               << "  path length PL      " << s.pathLength << " m\n"
               << "  planning time PT    " << s.planningTime << " s  (median " << s.planMsMedian
@@ -42,8 +44,7 @@ void printSummary(const eval::RunSummary& s, const std::string& dir) {
               << "  finished            " << (s.finished ? "yes" : "no") << " (" << s.endReason
               << ")\n"
               << "  wall time           " << s.wallTime << " s  ("
-              << (s.wallTime > 0 ? (s.explorationTime / s.wallTime) : 0.0)
-              << " x real time)\n";
+              << (s.wallTime > 0 ? (s.explorationTime / s.wallTime) : 0.0) << " x real time)\n";
 }
 
 }  // namespace
@@ -61,7 +62,8 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         const auto needValue = [&](const std::string& flag) {
-            if (i + 1 >= argc) throw InputError(flag + ": missing value");
+            if (i + 1 >= argc)
+                throw InputError(flag + ": missing value");
             return std::string(argv[++i]);
         };
         if (arg == "--help" || arg == "-h") {
@@ -89,7 +91,8 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
             throw InputError("more than one config file given: " + configPath_ + ", " + arg);
         }
     }
-    if (configPath_.empty()) throw InputError("no config file given\n" + usage());
+    if (configPath_.empty())
+        throw InputError("no config file given\n" + usage());
     if (outputDir_.empty())
         outputDir_ = "out/" + std::filesystem::path(configPath_).stem().string();
     return true;
@@ -98,7 +101,8 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
 int ExploreApp::run() {
     try {
         const ExperimentConfig config = ExperimentConfig::fromFile(configPath_, overrides_);
-        if (!quiet_) std::cout << "# Effective parameters (" << configPath_ << ")\n" << config.dump();
+        if (!quiet_)
+            std::cout << "# Effective parameters (" << configPath_ << ")\n" << config.dump();
         Mission mission(config, outputDir_, quiet_ ? nullptr : &std::cout);
         std::ofstream(outputDir_ + "/config.ini") << config.dump();
         g_running = &mission;

@@ -3,15 +3,16 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <filesystem>
-#include <cmath>
 #include <iomanip>
 #include <ostream>
 #include <random>
 #include <sstream>
 
 #include "ComponentParams.h"
+#include "MissionSetup.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/eval/Statistics.h"
@@ -38,71 +39,10 @@ double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-struct Settings {
-    std::string worldName, mode, plannerName, planningTime;
-    int start = 0;
-    std::uint64_t seed = 0;
-    double maxTime = 0, planningFixed = 0, climb = 0, sampleEvery = 0, progressEvery = 0;
-    int maxFailedPlans = 0;
-};
-
-Settings loadSettings(const ExperimentConfig& experiment) {
-    const ConfigReader r(experiment.config(), "experiment", experiment.source());
-    Settings s;
-    s.worldName = r.requireString("world");
-    s.mode = r.requireString("mode");
-    if (s.mode != "static" && s.mode != "dynamic")
-        throw InputError(experiment.source() + ": [experiment] mode: '" + s.mode +
-                         "' is not one of static, dynamic");
-    s.plannerName = r.requireString("planner");
-    s.start = r.requireInt("start");
-    const std::string seedText = r.requireString("seed");
-    try {
-        std::size_t used = 0;
-        s.seed = std::stoull(seedText, &used);
-        if (used != seedText.size()) throw std::invalid_argument("trailing");
-    } catch (const std::exception&) {
-        throw InputError(experiment.source() + ": [experiment] seed: '" + seedText +
-                         "' is not a non-negative integer");
-    }
-    s.maxTime = r.requireDouble("max_time_s");
-    if (s.maxTime <= 0) throw InputError(experiment.source() + ": [experiment] max_time_s: must be > 0");
-    s.planningTime = r.requireString("planning_time");
-    if (s.planningTime != "measured" && s.planningTime != "fixed")
-        throw InputError(experiment.source() + ": [experiment] planning_time: '" + s.planningTime +
-                         "' is not one of measured, fixed");
-    s.planningFixed = r.requireDouble("planning_fixed_s");
-    s.climb = r.requireDouble("climb_m");
-    s.sampleEvery = r.requireDouble("timeseries_every_s");
-    if (s.sampleEvery <= 0) throw InputError("[experiment] timeseries_every_s: must be > 0");
-    s.progressEvery = r.requireDouble("progress_every_s");
-    s.maxFailedPlans = r.requireInt("max_failed_plans");
-    return s;
-}
-
-/** A world given as a relative path is looked up next to the experiment file first. */
-std::string worldPath(const Settings& s, const std::string& experimentSource) {
-    const std::filesystem::path besideConfig =
-        std::filesystem::path(experimentSource).parent_path() / s.worldName;
-    if (std::filesystem::path(s.worldName).is_relative() &&
-        std::filesystem::is_regular_file(besideConfig))
-        return besideConfig.string();
-    return world::resolveWorldPath(s.worldName);
-}
-
-world::WorldSpec loadWorld(const Settings& s, const std::string& experimentSource) {
-    world::WorldSpec w = world::loadWorldFile(worldPath(s, experimentSource));
-    if (s.mode == "static") w.people.clear();
-    if (s.start < 0 || s.start >= static_cast<int>(w.starts.size()))
-        throw InputError("[experiment] start: " + std::to_string(s.start) + " is out of range 0.." +
-                         std::to_string(static_cast<int>(w.starts.size()) - 1) + " for world " +
-                         w.name);
-    return w;
-}
-
 std::string formatPoint(const Eigen::Vector3d& p) {
     std::ostringstream o;
-    o << std::fixed << std::setprecision(2) << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+    o << std::fixed << std::setprecision(2) << "(" << p.x() << ", " << p.y() << ", " << p.z()
+      << ")";
     return o.str();
 }
 
@@ -146,9 +86,15 @@ struct Mission::Impl {
                                  " (take-off) is inside static geometry");
         }
         if (!world.explorationBox.contains(top))
-            throw InputError(world.sourceFile + ": start " + std::to_string(settings.start) +
-                             " " + formatPoint(s) + ": after the climb the drone is outside the "
+            throw InputError(world.sourceFile + ": start " + std::to_string(settings.start) + " " +
+                             formatPoint(s) +
+                             ": after the climb the drone is outside the "
                              "exploration box");
+    }
+
+    /** Known volume over the world's exploration volume (Cafe declares 510 m^3, as the paper). */
+    double coveragePercent() const {
+        return 100.0 * map.knownVolumeInBox() / world.explorationVolume();
     }
 
     bool exploring() const { return exploreStart >= 0; }
@@ -157,17 +103,18 @@ struct Mission::Impl {
     bool stopping() const { return timeUp() || (stopFlag && *stopFlag); }
 
     void captureFrame() {
-        if (!world.people.empty()) caster.setPeople(people.states(), people.params().bodySize);
+        if (!world.people.empty())
+            caster.setPeople(people.states(), people.params().bodySize);
         camera.render(caster, drone.pose(), t, noiseRng, frame);
         map.insertObservation(frame, drone.pose());
-        recorder.addPose(explorationTime(), drone.pose());
+        recorder.addPose(t, drone.pose());
     }
 
     void recordDueSamples() {
         while (exploring() && explorationTime() + kEps >= nextSample) {
             eval::MetricsSample s;
             s.time = nextSample;
-            s.coveragePercent = 100.0 * map.coverage();
+            s.coveragePercent = coveragePercent();
             s.pathLength = pathLength;
             s.planningTime = planningCharged;
             s.collisions = monitor.personCollisions();
@@ -178,7 +125,8 @@ struct Mission::Impl {
     }
 
     void printProgressIfDue(const eval::MetricsSample& s) {
-        if (!log || settings.progressEvery <= 0 || s.time + kEps < nextProgress) return;
+        if (!log || settings.progressEvery <= 0 || s.time + kEps < nextProgress)
+            return;
         nextProgress += settings.progressEvery;
         *log << "[t " << std::fixed << std::setprecision(0) << std::setw(5) << s.time
              << " s] coverage " << std::setprecision(1) << std::setw(5) << s.coveragePercent
@@ -194,7 +142,8 @@ struct Mission::Impl {
         const double end = t + dt;
         while (t < end - kEps && !stopping()) {
             double h = std::min({end - t, nextFrame - t, kMaxStep});
-            if (exploring()) h = std::min(h, settings.maxTime - explorationTime());
+            if (exploring())
+                h = std::min(h, settings.maxTime - explorationTime());
             h = std::max(h, 0.0);
             bool reached = false;
             if (flying) {
@@ -202,7 +151,8 @@ struct Mission::Impl {
                 const double used = drone.advance(h);
                 reached = !drone.hasGoal();
                 h = used;
-                if (exploring()) pathLength += (drone.pose().position - before).norm();
+                if (exploring())
+                    pathLength += (drone.pose().position - before).norm();
             }
             people.advance(h);
             t += h;
@@ -212,14 +162,16 @@ struct Mission::Impl {
                 nextFrame += framePeriod;
             }
             recordDueSamples();
-            if (reached) return true;
+            if (reached)
+                return true;
         }
         return false;
     }
 
     void flyTo(const FlatPose& goal) {
         drone.setGoal(goal);
-        while (drone.hasGoal() && !stopping()) advance(framePeriod, true);
+        while (drone.hasGoal() && !stopping())
+            advance(framePeriod, true);
         drone.clearGoal();
     }
 
@@ -275,7 +227,8 @@ struct Mission::Impl {
             }
             failedPlans = 0;
             for (const auto& wp : plan.waypoints) {
-                if (stopping()) break;
+                if (stopping())
+                    break;
                 flyTo(wp.pose);
             }
             recorder.flush();
@@ -284,11 +237,13 @@ struct Mission::Impl {
     }
 
     eval::RunSummary summarize(double wallTime) {
-        for (const auto& e : monitor.events()) recorder.addCollision(e.personIndex, e.start, e.end);
+        for (const auto& e : monitor.events())
+            recorder.addCollision(e.personIndex, e.start, e.end);
         std::vector<double> ms;
-        for (double s : recorder.chargedPlanTimes()) ms.push_back(1e3 * s);
+        for (double s : recorder.chargedPlanTimes())
+            ms.push_back(1e3 * s);
         eval::RunSummary s;
-        s.coveragePercent = 100.0 * map.coverage();
+        s.coveragePercent = coveragePercent();
         s.explorationTime = explorationTime();
         s.pathLength = pathLength;
         s.planningTime = planningCharged;
@@ -301,7 +256,8 @@ struct Mission::Impl {
         s.endReason = endReason;
         s.wallTime = wallTime;
         s.knownVolume = map.knownVolumeInBox();
-        s.boxVolume = world.explorationBox.volume();
+        s.boxVolume = world.explorationVolume();
+        s.explorationStart = exploreStart;
         s.labels = {{"world", world.name},
                     {"mode", settings.mode},
                     {"planner", settings.plannerName},
@@ -354,13 +310,15 @@ eval::RunSummary Mission::run() {
         m.takeOffAndLookAround();
         m.exploreStart = m.t;
         m.recordDueSamples();
-        if (!stopRequested_) m.explore();
+        if (!stopRequested_)
+            m.explore();
     } catch (const std::exception& e) {
         // Keep what the run produced so far: the outputs below are still written.
         failure = std::current_exception();
         m.endReason = std::string("error: ") + e.what();
     }
-    if (m.endReason.empty()) m.endReason = "interrupted";
+    if (m.endReason.empty())
+        m.endReason = "interrupted";
     const eval::RunSummary summary = m.summarize(secondsSince(t0));
     m.recorder.flush();
     m.recorder.writeSummary(summary);
@@ -368,7 +326,8 @@ eval::RunSummary Mission::run() {
     m.recorder.writeCollisions();
     if (!m.map.writeBinary(m.recorder.path("map.bt")))
         throw std::runtime_error("cannot write " + m.recorder.path("map.bt"));
-    if (failure) std::rethrow_exception(failure);
+    if (failure)
+        std::rethrow_exception(failure);
     return summary;
 }
 

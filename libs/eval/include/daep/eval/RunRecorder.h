@@ -34,6 +34,7 @@ struct RunSummary {
     double wallTime = 0.0;
     double knownVolume = 0.0;
     double boxVolume = 0.0;
+    double explorationStart = 0.0;  ///< simulated time since spawn when exploration began
     std::string endReason;
     /** Run identification (world, mode, planner, start, seed): written as strings. */
     std::map<std::string, std::string> labels;
@@ -54,7 +55,8 @@ public:
     std::string path(const std::string& file) const;
 
     void addSample(const MetricsSample& sample);
-    void addPose(double time, const FlatPose& pose);
+    /** A drone pose at simulated time since spawn (take-off included). */
+    void addPose(double simTime, const FlatPose& pose);
     /** One planner call: when, how long it was charged, its real duration, its outcome. */
     void addPlan(double time, double chargedSec, double wallSec, const std::string& status,
                  double gain, int waypoints);

@@ -1,0 +1,72 @@
+#include "MissionSetup.h"
+
+#include <filesystem>
+
+#include "daep/common/Config.h"
+#include "daep/common/Error.h"
+#include "daep/mission/ExperimentConfig.h"
+
+namespace daep::mission {
+namespace {
+
+/** A world given as a relative path is looked up next to the experiment file first. */
+std::string worldPath(const Settings& s, const std::string& experimentSource) {
+    const std::filesystem::path besideConfig =
+        std::filesystem::path(experimentSource).parent_path() / s.worldName;
+    if (std::filesystem::path(s.worldName).is_relative() &&
+        std::filesystem::is_regular_file(besideConfig))
+        return besideConfig.string();
+    return world::resolveWorldPath(s.worldName);
+}
+
+}  // namespace
+
+Settings loadSettings(const ExperimentConfig& experiment) {
+    const ConfigReader r(experiment.config(), "experiment", experiment.source());
+    Settings s;
+    s.worldName = r.requireString("world");
+    s.mode = r.requireString("mode");
+    if (s.mode != "static" && s.mode != "dynamic")
+        throw InputError(experiment.source() + ": [experiment] mode: '" + s.mode +
+                         "' is not one of static, dynamic");
+    s.plannerName = r.requireString("planner");
+    s.start = r.requireInt("start");
+    const std::string seedText = r.requireString("seed");
+    try {
+        std::size_t used = 0;
+        s.seed = std::stoull(seedText, &used);
+        if (used != seedText.size())
+            throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+        throw InputError(experiment.source() + ": [experiment] seed: '" + seedText +
+                         "' is not a non-negative integer");
+    }
+    s.maxTime = r.requireDouble("max_time_s");
+    if (s.maxTime <= 0)
+        throw InputError(experiment.source() + ": [experiment] max_time_s: must be > 0");
+    s.planningTime = r.requireString("planning_time");
+    if (s.planningTime != "measured" && s.planningTime != "fixed")
+        throw InputError(experiment.source() + ": [experiment] planning_time: '" + s.planningTime +
+                         "' is not one of measured, fixed");
+    s.planningFixed = r.requireDouble("planning_fixed_s");
+    s.climb = r.requireDouble("climb_m");
+    s.sampleEvery = r.requireDouble("timeseries_every_s");
+    if (s.sampleEvery <= 0)
+        throw InputError("[experiment] timeseries_every_s: must be > 0");
+    s.progressEvery = r.requireDouble("progress_every_s");
+    s.maxFailedPlans = r.requireInt("max_failed_plans");
+    return s;
+}
+
+world::WorldSpec loadWorld(const Settings& s, const std::string& experimentSource) {
+    world::WorldSpec w = world::loadWorldFile(worldPath(s, experimentSource));
+    if (s.mode == "static")
+        w.people.clear();
+    if (s.start < 0 || s.start >= static_cast<int>(w.starts.size()))
+        throw InputError("[experiment] start: " + std::to_string(s.start) + " is out of range 0.." +
+                         std::to_string(static_cast<int>(w.starts.size()) - 1) + " for world " +
+                         w.name);
+    return w;
+}
+
+}  // namespace daep::mission

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "daep/world/WorldSpec.h"
+
+namespace daep::mission {
+
+class ExperimentConfig;
+
+/** The [experiment] section, validated. */
+struct Settings {
+    std::string worldName, mode, plannerName, planningTime;
+    int start = 0;
+    std::uint64_t seed = 0;
+    double maxTime = 0, planningFixed = 0, climb = 0, sampleEvery = 0, progressEvery = 0;
+    int maxFailedPlans = 0;
+};
+
+Settings loadSettings(const ExperimentConfig& experiment);
+
+/** The experiment's world, people removed in static mode, start index checked. */
+world::WorldSpec loadWorld(const Settings& s, const std::string& experimentSource);
+
+}  // namespace daep::mission
