@@ -15,7 +15,7 @@ namespace daep::sim {
 struct CollisionEvent {
     int personIndex = -1;  ///< -1 for static geometry
     double start = 0.0;
-    double end = -1.0;     ///< -1 while ongoing
+    double end = -1.0;  ///< -1 while ongoing
 };
 
 /**
@@ -39,6 +39,9 @@ public:
                                    const Eigen::Vector3d& personSize);
 
 private:
+    /** Opens or closes one contact episode; true when a new one starts. */
+    bool updateContact(double time, bool touching, int personIndex, int& openEvent);
+
     Eigen::Vector3d droneSize_;
     Eigen::Vector3d personSize_;
     const world::StaticCollisionChecker* staticChecker_;
