@@ -1,0 +1,94 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <vector>
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+namespace daep::mapping {
+class ExplorationMap;
+}
+
+namespace daep::planning {
+
+/** Ray-cubature parameters, section [gain]. Angles in radians. */
+struct GainParams {
+    double hfov = 103.2 * M_PI / 180.0;
+    double vfov = 77.4 * M_PI / 180.0;
+    double range = 5.0;
+    double dr = 0.2;
+    double dphi = 10.0 * M_PI / 180.0;    ///< elevation step
+    double dtheta = 10.0 * M_PI / 180.0;  ///< azimuth step
+
+    /** Reads and validates [gain]; throws InputError naming the bad key. */
+    static GainParams fromConfig(const mrpt::config::CConfigFileBase& config);
+};
+
+/** A heading and the unknown volume (m^3) seen with the camera at that heading. */
+struct YawGain {
+    double yaw = 0.0;
+    double gain = 0.0;
+};
+
+/**
+ * Information gain as unknown volume in the camera's field of view, estimated by ray cubature
+ * (as in AEP): rays on an azimuth x elevation grid, marched in radial steps until they hit an
+ * occupied cell or leave the exploration box; every unknown sample adds the exact volume of its
+ * spherical shell element.
+ *
+ * Discretisation: the steps are rounded so that the cells tile their ranges exactly: N azimuth
+ * columns of width 2pi/N covering [i w, (i+1) w] (ray at the column centre), M elevation rings
+ * tiling [pi/2 - vfov/2, pi/2 + vfov/2] (phi from +z), K shells tiling [0, range] with samples at
+ * the shell mid-radii. A fully unknown, unobstructed view therefore sums to exactly the volume
+ * range^3/3 * hfov * (cos phi_min - cos phi_max).
+ *
+ * The gain at a yaw weights each column by the fraction of its azimuth interval inside
+ * [yaw - hfov/2, yaw + hfov/2], so the gain is continuous in yaw. bestYaw() computes all
+ * columns once and sweeps candidate yaws in 1 degree steps.
+ */
+class GainEvaluator {
+public:
+    explicit GainEvaluator(const GainParams& params);
+
+    /** Unknown volume per azimuth column (column i spans [i, i+1] * columnWidth()). */
+    std::vector<double> columns(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) const;
+
+    /** Gain seen at heading `yaw`; evaluates only the columns inside the field of view. */
+    double gainAtYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+                     double yaw) const;
+
+    /** The heading with the largest gain (first maximum of the 1 degree sweep). */
+    YawGain bestYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) const;
+
+    /** Field-of-view window over precomputed columns. */
+    double windowGain(const std::vector<double>& columns, double yaw) const;
+    YawGain bestYaw(const std::vector<double>& columns) const;
+
+    const GainParams& params() const { return params_; }
+    int columnCount() const { return columns_; }
+    double columnWidth() const { return columnWidth_; }
+    /** Angular extent actually covered by the elevation rings, [phi_min, phi_max] from +z. */
+    double phiMin() const { return phiMin_; }
+    double phiMax() const { return phiMax_; }
+
+private:
+    double columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+                      int column) const;
+    template <class ColumnFn>
+    double window(double yaw, const ColumnFn& columnGainOf) const;
+
+    GainParams params_;
+    int columns_ = 0;
+    int rings_ = 0;
+    double columnWidth_ = 0.0;
+    double phiMin_ = 0.0;
+    double phiMax_ = 0.0;
+    std::vector<Eigen::Vector3d> directions_;  ///< [column * rings_ + ring], unit length
+    std::vector<double> ringWeights_;          ///< solid angle of each ring's cell
+    std::vector<double> radii_;                ///< shell mid-radii
+    std::vector<double> shellWeights_;         ///< r^2 dr + dr^3 / 12 per shell
+};
+
+}  // namespace daep::planning

@@ -1,0 +1,100 @@
+#pragma once
+
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "daep/common/Types.h"
+#include "daep/mapping/ExplorationMap.h"
+
+namespace daep::planning::test {
+
+inline std::unique_ptr<mapping::ExplorationMap> makeMap(const Aabb& box, double maxRange = 5.0) {
+    mapping::MapParams params;
+    params.resolution = 0.2;
+    params.maxRange = maxRange;
+    return std::make_unique<mapping::ExplorationMap>(params, box);
+}
+
+inline Aabb box(double x0, double y0, double z0, double x1, double y1, double z1) {
+    Aabb b;
+    b.min = {x0, y0, z0};
+    b.max = {x1, y1, z1};
+    return b;
+}
+
+/** Distance from `origin` (inside `room`) along unit `dir` to the room's boundary. */
+inline double distanceToWall(const Aabb& room, const Eigen::Vector3d& origin,
+                             const Eigen::Vector3d& dir) {
+    double t = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] > 0)
+            t = std::min(t, (room.max[a] - origin[a]) / dir[a]);
+        if (dir[a] < 0)
+            t = std::min(t, (room.min[a] - origin[a]) / dir[a]);
+    }
+    return t;
+}
+
+/**
+ * A synthetic scan from `origin` of the walls of an empty box-shaped `room`: one point per
+ * (azimuth, elevation) step where the ray meets a wall. Elevations within +-maxElevationDeg.
+ */
+inline std::vector<Eigen::Vector3f> roomScan(const Aabb& room, const Eigen::Vector3d& origin,
+                                             double stepDeg = 1.0, double maxElevationDeg = 90.0) {
+    std::vector<Eigen::Vector3f> points;
+    const double step = stepDeg * M_PI / 180.0;
+    const double maxEl = maxElevationDeg * M_PI / 180.0;
+    for (double el = -maxEl; el <= maxEl + 1e-9; el += step) {
+        for (double az = 0; az < 2 * M_PI; az += step) {
+            const Eigen::Vector3d dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                      std::sin(el));
+            points.push_back((origin + distanceToWall(room, origin, dir) * dir).cast<float>());
+        }
+    }
+    return points;
+}
+
+inline std::string readFile(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+inline std::string defaultsText() {
+    return readFile(std::string(DAEP_SOURCE_DIR) + "/share/daep/config/defaults.ini");
+}
+
+/** The ini text with `key` of `[section]` removed (or its value replaced when value given). */
+inline std::string editKey(const std::string& text, const std::string& section,
+                           const std::string& key, const std::string* value = nullptr) {
+    std::istringstream in(text);
+    std::ostringstream out;
+    std::string line, current;
+    while (std::getline(in, line)) {
+        if (!line.empty() && line[0] == '[')
+            current = line.substr(1, line.find(']') - 1);
+        const bool match = current == section && line.rfind(key + " ", 0) == 0;
+        if (!match) {
+            out << line << '\n';
+        } else if (value != nullptr) {
+            out << key << " = " << *value << '\n';
+        }
+    }
+    return out.str();
+}
+
+inline std::unique_ptr<mrpt::config::CConfigFileMemory> configFromText(const std::string& text) {
+    return std::make_unique<mrpt::config::CConfigFileMemory>(text);
+}
+
+}  // namespace daep::planning::test

@@ -1,0 +1,190 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "PlanningTestUtil.h"
+#include "daep/common/Error.h"
+#include "daep/common/Types.h"
+#include "daep/planning/GainEvaluator.h"
+
+namespace daep::planning {
+namespace {
+
+using test::box;
+using test::makeMap;
+
+constexpr double kDeg = M_PI / 180.0;
+
+/** Exact volume of the unobstructed view: range^3/3 * azimuth span * (cos phiMin - cos phiMax). */
+double viewVolume(const GainEvaluator& g, double azimuthSpan) {
+    const double r = g.params().range;
+    return r * r * r / 3.0 * azimuthSpan * (std::cos(g.phiMin()) - std::cos(g.phiMax()));
+}
+
+double sum(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v)
+        s += x;
+    return s;
+}
+
+/** Calls f(a, b) for the cell centres a, b within +-halfCells cells of (a0, b0), a cell centre. */
+template <class F>
+void forCellGrid(double a0, double b0, int halfCells, F f) {
+    for (int i = -halfCells; i <= halfCells; ++i) {
+        for (int j = -halfCells; j <= halfCells; ++j)
+            f(a0 + 0.2 * i, b0 + 0.2 * j);
+    }
+}
+
+/** Scan origins along x = -0.1 whose rays run straight down -x: cells with x < 0 become free. */
+void clearNegativeX(mapping::ExplorationMap& map, const Eigen::Vector3d& p) {
+    forCellGrid(p.y(), p.z(), 28, [&](double y, double z) {
+        map.insertPointCloud({-0.1, y, z}, {Eigen::Vector3f(-30.f, float(y), float(z))});
+    });
+}
+
+TEST(GainEvaluator, ViewVolumeInUnknownMap) {
+    auto map = makeMap(box(-8, -8, -8, 8, 8, 8));
+    const GainEvaluator g{GainParams{}};
+    const Eigen::Vector3d p(0.3, -0.2, 0.5);
+    const double expected = viewVolume(g, g.params().hfov);
+    EXPECT_NEAR(expected, 93.8, 0.5);  // the default camera's view, for orientation
+    for (double yaw : {0.0, 0.3, 2.5, -3.0, M_PI}) {
+        EXPECT_NEAR(g.gainAtYaw(*map, p, yaw), expected, 1e-9 * expected) << "yaw " << yaw;
+    }
+    EXPECT_NEAR(sum(g.columns(*map, p)), viewVolume(g, 2 * M_PI), 1e-9 * expected);
+}
+
+TEST(GainEvaluator, StepsThatDoNotDivideTheRangesStillTileThem) {
+    auto map = makeMap(box(-8, -8, -8, 8, 8, 8));
+    GainParams params;
+    params.hfov = 60 * kDeg;
+    params.vfov = 50 * kDeg;
+    params.dtheta = 7 * kDeg;
+    params.dphi = 9 * kDeg;
+    params.dr = 0.3;
+    params.range = 4.0;
+    const GainEvaluator g(params);
+    EXPECT_EQ(g.columnCount(), 51);
+    EXPECT_NEAR(g.phiMax() - g.phiMin(), params.vfov, 1e-12);
+    const double expected = viewVolume(g, params.hfov);
+    EXPECT_NEAR(g.gainAtYaw(*map, {0, 0, 0}, 1.0), expected, 1e-9 * expected);
+}
+
+TEST(GainEvaluator, HalfKnownSceneGivesHalfTheVolume) {
+    auto map = makeMap(box(-8, -8, -8, 8, 8, 8), 6.0);
+    const Eigen::Vector3d p(0.0, 0.1, 0.1);  // on the plane x = 0 between free and unknown
+    clearNegativeX(*map, p);
+    const GainEvaluator g{GainParams{}};
+    const double full = viewVolume(g, 2 * M_PI);
+    EXPECT_NEAR(sum(g.columns(*map, p)), 0.5 * full, 1e-9 * full);
+    EXPECT_NEAR(g.gainAtYaw(*map, p, M_PI), 0.0, 1e-12);
+    EXPECT_NEAR(g.gainAtYaw(*map, p, 0.0), viewVolume(g, g.params().hfov), 1e-9 * full);
+    // Looking along the boundary: exactly half of the window lies on the unknown side.
+    EXPECT_NEAR(g.gainAtYaw(*map, p, M_PI / 2), 0.5 * viewVolume(g, g.params().hfov), 1e-9 * full);
+}
+
+TEST(GainEvaluator, BestYawFacesTheUnknownSide) {
+    auto map = makeMap(box(-8, -8, -8, 8, 8, 8), 6.0);
+    const Eigen::Vector3d p(0.0, 0.1, 0.1);
+    clearNegativeX(*map, p);
+    const GainEvaluator g{GainParams{}};
+    const YawGain best = g.bestYaw(*map, p);
+    // Any yaw whose window lies wholly in x > 0 is optimal: |yaw| <= 90 - hfov/2.
+    EXPECT_LE(std::abs(best.yaw), (90.0 - 51.6) * kDeg + 1e-9);
+    EXPECT_NEAR(best.gain, viewVolume(g, g.params().hfov), 1e-6);
+    EXPECT_NEAR(best.gain, g.gainAtYaw(*map, p, best.yaw), 1e-9);
+}
+
+TEST(GainEvaluator, BestYawRotatesWithTheUnknownSide) {
+    // Only +y is unknown: the slab y < 0 is cleared by rays running down -y.
+    auto map = makeMap(box(-8, -8, -8, 8, 8, 8), 6.0);
+    forCellGrid(0.1, 0.1, 28, [&](double x, double z) {
+        map->insertPointCloud({x, -0.1, z}, {Eigen::Vector3f(float(x), -30.f, float(z))});
+    });
+    const GainEvaluator g{GainParams{}};
+    const YawGain best = g.bestYaw(*map, {0.1, 0.0, 0.1});
+    EXPECT_GT(std::sin(best.yaw), std::sin(51.0 * kDeg));
+}
+
+TEST(GainEvaluator, OccupiedWallBlocksTheRaysBehindIt) {
+    auto map = makeMap(box(-8, -8, -8, 8, 8, 8));
+    const Eigen::Vector3d p(0.1, 0.1, 0.1);
+    // A wall occupying the cells 2.0 <= x < 2.2, seen from behind so that x < 2 stays unknown.
+    forCellGrid(0.1, 0.1, 27, [&](double y, double z) {
+        map->insertPointCloud({2.5, y, z}, {Eigen::Vector3f(2.1f, float(y), float(z))});
+    });
+    ASSERT_TRUE(map->isOccupied({2.1, 0.1, 0.1}));
+    ASSERT_TRUE(map->isUnknown({1.9, 0.1, 0.1}));
+
+    const GainEvaluator g{GainParams{}};
+    const double half = 0.5 * g.params().hfov;
+    // Fine numerical integral of the view clipped by the plane x = 2 (measured from p).
+    double clipped = 0.0;
+    const double step = 0.1 * kDeg;
+    for (double th = -half + step / 2; th < half; th += step) {
+        for (double ph = g.phiMin() + step / 2; ph < g.phiMax(); ph += step) {
+            const double dx = std::sin(ph) * std::cos(th);
+            const double r = std::min(g.params().range, (2.0 - p.x()) / dx);
+            clipped += r * r * r / 3.0 * std::sin(ph) * step * step;
+        }
+    }
+    const double blocked = g.gainAtYaw(*map, p, 0.0);
+    EXPECT_NEAR(blocked, clipped, 0.05 * clipped);
+    EXPECT_LT(blocked, 0.2 * viewVolume(g, g.params().hfov));
+    // The opposite view is untouched.
+    EXPECT_NEAR(g.gainAtYaw(*map, p, M_PI), viewVolume(g, g.params().hfov), 1e-6);
+}
+
+TEST(GainEvaluator, RaysStopAtTheExplorationBox) {
+    // p 1 m from the +x face: the view toward +x only holds the part inside the box.
+    auto map = makeMap(box(-8, -8, -8, 1.1, 8, 8));
+    const GainEvaluator g{GainParams{}};
+    const Eigen::Vector3d p(0.1, 0.1, 0.1);
+    const double inside = g.gainAtYaw(*map, p, 0.0);
+    EXPECT_GT(inside, 0.0);
+    EXPECT_LT(inside, 0.1 * viewVolume(g, g.params().hfov));
+    EXPECT_EQ(g.gainAtYaw(*map, {2.0, 0.0, 0.0}, 0.0), 0.0);  // outside the box
+}
+
+TEST(GainEvaluator, WindowOverColumnsMatchesDirectEvaluation) {
+    auto map = makeMap(box(-8, -8, -8, 8, 8, 8));
+    const Aabb room = box(-3, -2, -1, 4, 3, 2);
+    map->insertPointCloud({0.5, 0.5, 0.5}, test::roomScan(room, {0.5, 0.5, 0.5}, 2.0, 40.0));
+    const GainEvaluator g{GainParams{}};
+    const Eigen::Vector3d p(1.3, -0.4, 0.2);
+    const std::vector<double> cols = g.columns(*map, p);
+    for (double yaw = -M_PI; yaw < M_PI; yaw += 0.37) {
+        EXPECT_NEAR(g.windowGain(cols, yaw), g.gainAtYaw(*map, p, yaw), 1e-9) << yaw;
+    }
+    const YawGain best = g.bestYaw(cols);
+    for (int deg = -179; deg <= 180; ++deg) {
+        EXPECT_LE(g.windowGain(cols, deg * kDeg), best.gain + 1e-12);
+    }
+}
+
+TEST(GainParams, ReadsDegreesAndRejectsBadValues) {
+    const std::string text = test::defaultsText();
+    const GainParams p = GainParams::fromConfig(*test::configFromText(text));
+    EXPECT_NEAR(p.hfov, 103.2 * kDeg, 1e-12);
+    EXPECT_NEAR(p.dphi, 10 * kDeg, 1e-12);
+    EXPECT_DOUBLE_EQ(p.range, 5.0);
+
+    const std::string negative = "-0.2";
+    try {
+        GainParams::fromConfig(*test::configFromText(test::editKey(text, "gain", "dr", &negative)));
+        FAIL() << "negative dr accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("[gain] dr"), std::string::npos) << e.what();
+    }
+    try {
+        GainParams::fromConfig(*test::configFromText(test::editKey(text, "gain", "hfov_deg")));
+        FAIL() << "missing hfov_deg accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("[gain] hfov_deg"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace daep::planning
