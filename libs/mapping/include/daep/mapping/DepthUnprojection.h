@@ -1,0 +1,22 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "daep/common/Types.h"
+
+namespace mrpt::obs {
+class CObservation3DRangeScan;
+}
+
+namespace daep::mapping {
+
+/**
+ * World-frame points of every pixel with a return (depth > 0), in row-major pixel order: the
+ * same points and order as CObservation3DRangeScan::unprojectInto with the sensor pose and the
+ * robot pose applied (X forward, Y left, Z up), without copying the observation.
+ */
+std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3DRangeScan& obs,
+                                                 const FlatPose& robot);
+
+}  // namespace daep::mapping

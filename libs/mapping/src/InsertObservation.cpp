@@ -1,0 +1,77 @@
+#include <cstdint>
+
+#include "DepthPixels.h"
+#include "MapImpl.h"
+#include "daep/mapping/DepthUnprojection.h"
+
+namespace daep::mapping {
+namespace {
+
+constexpr std::uint64_t kNoKey = ~std::uint64_t(0);
+
+std::uint64_t pack(const octomap::OcTreeKey& k) {
+    return std::uint64_t(k[0]) | std::uint64_t(k[1]) << 16 | std::uint64_t(k[2]) << 32;
+}
+
+}  // namespace
+
+SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
+                               const FlatPose& robot) {
+    const mrpt::poses::CPose3D robotPose(robot.position.x(), robot.position.y(), robot.position.z(),
+                                         robot.yaw, 0.0, 0.0);
+    const mrpt::poses::CPose3D sensor = robotPose + obs.sensorPose;
+    const auto& r = sensor.getRotationMatrix();
+    const auto column = [&r](int c) {
+        return Eigen::Vector3f(float(r(0, c)), float(r(1, c)), float(r(2, c)));
+    };
+    return {column(0), column(1), column(2),
+            Eigen::Vector3f(float(sensor.x()), float(sensor.y()), float(sensor.z()))};
+}
+
+std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3DRangeScan& obs,
+                                                 const FlatPose& robot) {
+    std::vector<Eigen::Vector3f> points;
+    points.reserve(std::size_t(obs.rangeImage.rows() * obs.rangeImage.cols()));
+    forEachDepthPoint(obs, sensorFrameInWorld(obs, robot),
+                      [&points](int, int, const Eigen::Vector3f& p) { points.push_back(p); });
+    return points;
+}
+
+/**
+ * computeDiscreteUpdate reduces every end point to its voxel anyway, so feeding it one voxel
+ * centre per run of neighbouring pixels (same voxel as the pixel to the left or above) gives
+ * the same update with far fewer hash-set inserts.
+ */
+void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan& obs,
+                                       const FlatPose& robot) {
+    Impl& m = *impl_;
+    const SensorFrame frame = sensorFrameInWorld(obs, robot);
+    m.cloud.clear();
+    m.rowAbove.assign(std::size_t(obs.rangeImage.cols()), kNoKey);
+    std::uint64_t previous = kNoKey;
+    int previousRow = -1, previousCol = -1;
+    forEachDepthPoint(obs, frame, [&](int row, int col, const Eigen::Vector3f& p) {
+        if (row != previousRow || col != previousCol + 1) {
+            previous = kNoKey;  // the left neighbour had no return
+        }
+        previousRow = row;
+        previousCol = col;
+        octomap::OcTreeKey key;
+        if (!m.tree.coordToKeyChecked(octomap::point3d(p.x(), p.y(), p.z()), key)) {
+            previous = kNoKey;
+            return;
+        }
+        const std::uint64_t packed = pack(key);
+        std::uint64_t& above = m.rowAbove[std::size_t(col)];
+        if (packed != previous && packed != above) {
+            m.cloud.push_back(m.tree.keyToCoord(key));
+        }
+        previous = packed;
+        above = packed;
+    });
+    const octomap::point3d o(frame.origin.x(), frame.origin.y(), frame.origin.z());
+    knownInBox_ += m.integrate(o, params_.maxRange);
+    ++revision_;
+}
+
+}  // namespace daep::mapping

@@ -1,0 +1,97 @@
+#pragma once
+
+#include <octomap/OcTree.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "daep/mapping/ExplorationMap.h"
+
+namespace daep::mapping {
+
+/**
+ * The octree plus its dense mirror. Dense-grid indices are derived from octree keys only, so
+ * the grid and the tree agree on which cell contains a point.
+ */
+struct ExplorationMap::Impl {
+    Impl(const MapParams& params, const Aabb& box);
+
+    octomap::OcTree tree;
+    octomap::OcTreeKey gridMin;  ///< key of the grid's first cell on each axis
+    std::array<int, 3> dims{};
+    std::vector<std::uint8_t> cells;
+    /// Per axis, whether the cell with that key offset has its centre inside the box.
+    std::array<std::vector<std::uint8_t>, 3> inBox;
+
+    octomap::Pointcloud cloud;  ///< scratch buffers reused between insertions
+    octomap::KeySet freeKeys;
+    octomap::KeySet occupiedKeys;
+    std::vector<std::uint64_t> rowAbove;  ///< packed keys of the previous image row
+
+    /** Key of the cell containing p; false if p is not finite or outside the tree. */
+    bool keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const;
+    bool axisKeyOf(double c, octomap::key_type& k) const;
+
+    /// Same factor as the octree's private resolution_factor (1 / resolution).
+    double scale = 0.0;
+    /// Grid bounds in scaled coordinates (coordinate * scale): [scaledLow, scaledHigh).
+    std::array<int, 3> scaledLow{}, scaledHigh{};
+
+    /**
+     * Dense index of the cell containing p, or -1 outside the grid. Computes the octree's key
+     * formula floor(p * scale) + offset without the libm floor call; the tests check it
+     * against octree search on and off cell boundaries.
+     */
+    std::int64_t gridIndex(const Eigen::Vector3d& p) const {
+        std::array<int, 3> i{};
+        for (int a = 0; a < 3; ++a) {
+            const double v = p[a] * scale;
+            if (!(v >= scaledLow[std::size_t(a)] && v < scaledHigh[std::size_t(a)])) {
+                return -1;  // also rejects NaN
+            }
+            const int t = int(v);
+            i[std::size_t(a)] = t - (double(t) > v) - scaledLow[std::size_t(a)];
+        }
+        return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
+    }
+
+    /** Dense index of key, or -1 when the key lies outside the dense grid. */
+    std::int64_t gridIndex(const octomap::OcTreeKey& key) const {
+        const int x = int(key[0]) - int(gridMin[0]);
+        const int y = int(key[1]) - int(gridMin[1]);
+        const int z = int(key[2]) - int(gridMin[2]);
+        if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) {
+            return -1;
+        }
+        return x + std::int64_t(dims[0]) * (y + std::int64_t(dims[1]) * z);
+    }
+
+    CellState stateAt(const octomap::OcTreeKey& key) const {
+        const std::int64_t i = gridIndex(key);
+        return i >= 0 ? CellState(cells[std::size_t(i)]) : treeState(key);
+    }
+
+    CellState treeState(const octomap::OcTreeKey& key) const;
+
+    bool keyInBox(const octomap::OcTreeKey& key) const;
+
+    /** Lower corner of the cell with this key along one axis. */
+    double cellLow(octomap::key_type k) const {
+        return tree.keyToCoord(k) - 0.5 * tree.getResolution();
+    }
+
+    /** True when every cell whose box is within radius of segment a-b satisfies allowed. */
+    template <typename Allowed>
+    bool capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius,
+                             Allowed allowed) const;
+
+    /**
+     * Integrates a cloud (world frame) seen from origin. Returns the number of cells inside the
+     * box that went from Unknown to known.
+     */
+    std::size_t integrate(const octomap::point3d& origin, double maxRange);
+};
+
+}  // namespace daep::mapping

@@ -1,0 +1,217 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "MapImpl.h"
+
+namespace daep::mapping {
+namespace {
+
+struct Interval {
+    double lo, hi;
+    bool empty() const { return lo > hi; }
+};
+
+/** Parameters t in [0, 1] where a + t d (one axis) lies in [lo, hi]. */
+Interval paramsInside(double a, double d, double lo, double hi) {
+    if (std::abs(d) < 1e-12) {
+        return (a >= lo && a <= hi) ? Interval{0.0, 1.0} : Interval{1.0, 0.0};
+    }
+    double t0 = (lo - a) / d, t1 = (hi - a) / d;
+    if (t0 > t1) {
+        std::swap(t0, t1);
+    }
+    return {std::max(0.0, t0), std::min(1.0, t1)};
+}
+
+/**
+ * Exact squared distance between segment a + t d (t in [0, 1]) and the box [lo, hi]. The
+ * squared distance is convex and piecewise quadratic in t, with breaks where the segment
+ * crosses a slab plane; each piece is minimised in closed form.
+ */
+double segmentBoxDistance2(const Eigen::Vector3d& a, const Eigen::Vector3d& d,
+                           const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    // Unused slots stay at 1 and only add empty pieces.
+    std::array<double, 8> breaks{};
+    breaks.fill(1.0);
+    breaks[0] = 0.0;
+    std::size_t n = 1;
+    for (int i = 0; i < 3; ++i) {
+        if (d[i] == 0.0) {
+            continue;
+        }
+        for (double plane : {lo[i], hi[i]}) {
+            const double t = (plane - a[i]) / d[i];
+            if (t > 0.0 && t < 1.0) {
+                breaks[n++] = t;
+            }
+        }
+    }
+    std::sort(breaks.begin(), breaks.end());
+
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t s = 0; s + 1 < breaks.size(); ++s) {
+        const double t0 = breaks[s], t1 = breaks[s + 1];
+        const double tm = 0.5 * (t0 + t1);
+        // On this piece each axis is below, inside or above its slab: sum of (e + t d)^2.
+        double qa = 0.0, qb = 0.0, qc = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            const double pm = a[i] + tm * d[i];
+            const double bound = pm < lo[i] ? lo[i] : (pm > hi[i] ? hi[i] : pm);
+            if (bound == pm) {
+                continue;
+            }
+            const double e = a[i] - bound;
+            qa += d[i] * d[i];
+            qb += 2.0 * e * d[i];
+            qc += e * e;
+        }
+        double t = qa > 0.0 ? -qb / (2.0 * qa) : t0;
+        t = std::clamp(t, t0, t1);
+        best = std::min(best, std::max(0.0, (qa * t + qb) * t + qc));
+    }
+    return best;
+}
+
+}  // namespace
+
+bool ExplorationMap::isBoxFree(const Eigen::Vector3d& center,
+                               const Eigen::Vector3d& halfExtents) const {
+    const Impl& m = *impl_;
+    octomap::OcTreeKey lo, hi;
+    if (!m.keyOf(center - halfExtents.cwiseAbs(), lo) ||
+        !m.keyOf(center + halfExtents.cwiseAbs(), hi)) {
+        return false;
+    }
+    octomap::OcTreeKey k;
+    for (int z = lo[2]; z <= hi[2]; ++z) {
+        k[2] = octomap::key_type(z);
+        for (int y = lo[1]; y <= hi[1]; ++y) {
+            k[1] = octomap::key_type(y);
+            for (int x = lo[0]; x <= hi[0]; ++x) {
+                k[0] = octomap::key_type(x);
+                if (m.stateAt(k) != CellState::Free) {
+                    return false;
+                }
+            }
+        }
+    }
+    return true;
+}
+
+/**
+ * True when every cell whose box comes within `radius` of segment a-b satisfies `allowed`.
+ * Walks the rows of cells along x; each row only scans the x range the capsule can reach, and
+ * the exact cell-to-segment distance is computed only for cells that are not allowed.
+ */
+template <typename Allowed>
+bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                               double radius, Allowed allowed) const {
+    const Impl& m = *this;
+    const double r = std::max(0.0, radius);
+    const double res = m.tree.getResolution();
+    const Eigen::Vector3d d = b - a;
+    octomap::OcTreeKey lo, hi;
+    if (!m.keyOf(a.cwiseMin(b).array() - r, lo) || !m.keyOf(a.cwiseMax(b).array() + r, hi)) {
+        return false;
+    }
+    const double r2 = r * r;
+    octomap::OcTreeKey k;
+    for (int z = lo[2]; z <= hi[2]; ++z) {
+        k[2] = octomap::key_type(z);
+        const double z0 = m.cellLow(k[2]);
+        const Interval tz = paramsInside(a.z(), d.z(), z0 - r, z0 + res + r);
+        if (tz.empty()) {
+            continue;
+        }
+        for (int y = lo[1]; y <= hi[1]; ++y) {
+            k[1] = octomap::key_type(y);
+            const double y0 = m.cellLow(k[1]);
+            const Interval ty = paramsInside(a.y(), d.y(), y0 - r, y0 + res + r);
+            const Interval t{std::max(tz.lo, ty.lo), std::min(tz.hi, ty.hi)};
+            if (t.empty()) {
+                continue;
+            }
+            const double xa = a.x() + t.lo * d.x(), xb = a.x() + t.hi * d.x();
+            octomap::key_type x0, x1;
+            if (!m.axisKeyOf(std::min(xa, xb) - r, x0) || !m.axisKeyOf(std::max(xa, xb) + r, x1)) {
+                return false;
+            }
+            for (int x = std::max<int>(x0, lo[0]); x <= std::min<int>(x1, hi[0]); ++x) {
+                k[0] = octomap::key_type(x);
+                if (allowed(m.stateAt(k))) {
+                    continue;
+                }
+                const Eigen::Vector3d cellLo(m.cellLow(k[0]), y0, z0);
+                if (segmentBoxDistance2(a, d, cellLo, cellLo.array() + res) <= r2) {
+                    return false;
+                }
+            }
+        }
+    }
+    return true;
+}
+
+bool ExplorationMap::isSegmentFree(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                   double radius) const {
+    return impl_->capsuleCellsAllowed(a, b, radius,
+                                      [](CellState s) { return s == CellState::Free; });
+}
+
+bool ExplorationMap::isSegmentFreeOrUnknown(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                            double radius) const {
+    return impl_->capsuleCellsAllowed(a, b, radius,
+                                      [](CellState s) { return s != CellState::Occupied; });
+}
+
+double ExplorationMap::castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& unitDir,
+                               double maxRange) const {
+    const Impl& m = *impl_;
+    octomap::OcTreeKey key;
+    const double norm = unitDir.norm();
+    if (!m.keyOf(origin, key) || !(norm > 0.0) || !(maxRange > 0.0)) {
+        return std::max(0.0, maxRange);
+    }
+    if (m.stateAt(key) == CellState::Occupied) {
+        return 0.0;
+    }
+    const Eigen::Vector3d dir = unitDir / norm;
+    const double res = m.tree.getResolution();
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::array<int, 3> step{};
+    std::array<double, 3> tNext{}, tDelta{};
+    for (int i = 0; i < 3; ++i) {
+        const double low = m.cellLow(key[i]);
+        if (dir[i] > 0.0) {
+            step[std::size_t(i)] = 1;
+            tNext[std::size_t(i)] = (low + res - origin[i]) / dir[i];
+        } else if (dir[i] < 0.0) {
+            step[std::size_t(i)] = -1;
+            tNext[std::size_t(i)] = (low - origin[i]) / dir[i];
+        } else {
+            tNext[std::size_t(i)] = kInf;
+        }
+        tDelta[std::size_t(i)] = dir[i] != 0.0 ? res / std::abs(dir[i]) : kInf;
+    }
+    constexpr int kKeyMax = std::numeric_limits<octomap::key_type>::max();
+    for (;;) {
+        const std::size_t axis =
+            std::size_t(std::min_element(tNext.begin(), tNext.end()) - tNext.begin());
+        const double t = tNext[axis];
+        if (t > maxRange) {
+            return maxRange;
+        }
+        const int next = int(key[axis]) + step[axis];
+        if (next < 0 || next > kKeyMax) {
+            return maxRange;
+        }
+        key[axis] = octomap::key_type(next);
+        tNext[axis] += tDelta[axis];
+        if (m.stateAt(key) == CellState::Occupied) {
+            return std::max(0.0, t);
+        }
+    }
+}
+
+}  // namespace daep::mapping

@@ -1,0 +1,181 @@
+#include <gtest/gtest.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <cmath>
+#include <random>
+
+#include "daep/mapping/DepthUnprojection.h"
+#include "daep/mapping/ExplorationMap.h"
+
+namespace daep::mapping {
+namespace {
+
+/** A depth camera frame (range_is_depth) filled with `depth` metres everywhere. */
+mrpt::obs::CObservation3DRangeScan makeFrame(int width, int height, double depth,
+                                             const mrpt::poses::CPose3D& sensorPose) {
+    mrpt::obs::CObservation3DRangeScan obs;
+    obs.hasRangeImage = true;
+    obs.range_is_depth = true;
+    obs.rangeUnits = 0.001f;
+    obs.rangeImage_setSize(height, width);
+    obs.rangeImage.fill(std::uint16_t(std::lround(depth / obs.rangeUnits)));
+    obs.cameraParams.ncols = std::uint32_t(width);
+    obs.cameraParams.nrows = std::uint32_t(height);
+    const double f = 0.5 * width;  // 90 degree horizontal field of view
+    obs.cameraParams.setIntrinsicParamsFromValues(f, f, 0.5 * (width - 1), 0.5 * (height - 1));
+    obs.sensorPose = sensorPose;
+    return obs;
+}
+
+FlatPose makePose(double x, double y, double z, double yaw) {
+    FlatPose p;
+    p.position = {x, y, z};
+    p.yaw = yaw;
+    return p;
+}
+
+TEST(DepthUnprojection, MatchesMrptUnprojectInto) {
+    const mrpt::poses::CPose3D sensorPose(0.12, -0.05, 0.2, 0.3, 0.25, -0.1);
+    auto obs = makeFrame(64, 48, 3.0, sensorPose);
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> depthMm(0, 9000);
+    for (int r = 0; r < 48; ++r) {
+        for (int c = 0; c < 64; ++c) {
+            const int d = depthMm(rng);
+            obs.rangeImage(r, c) = std::uint16_t(d < 500 ? 0 : d);  // some pixels: no return
+        }
+    }
+    const FlatPose robot = makePose(1.5, -2.0, 1.2, 2.4);
+    const auto mine = unprojectDepthImage(obs, robot);
+
+    mrpt::maps::CSimplePointsMap theirs;
+    mrpt::obs::T3DPointsProjectionParams pp;
+    pp.takeIntoAccountSensorPoseOnRobot = true;
+    pp.robotPoseInTheWorld = mrpt::poses::CPose3D(1.5, -2.0, 1.2, 2.4, 0.0, 0.0);
+    obs.unprojectInto(theirs, pp);
+
+    ASSERT_EQ(mine.size(), theirs.size());
+    ASSERT_GT(mine.size(), 64u * 48u * 3u / 4u);
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+        float x, y, z;
+        theirs.getPoint(i, x, y, z);
+        ASSERT_NEAR(mine[i].x(), x, 1e-4) << i;
+        ASSERT_NEAR(mine[i].y(), y, 1e-4) << i;
+        ASSERT_NEAR(mine[i].z(), z, 1e-4) << i;
+    }
+}
+
+TEST(DepthUnprojection, AxesAreXForwardYLeftZUp) {
+    // Odd size so that the principal point is a pixel centre.
+    const auto obs = makeFrame(5, 3, 2.0, mrpt::poses::CPose3D());
+    const auto pts = unprojectDepthImage(obs, FlatPose{});
+    ASSERT_EQ(pts.size(), 15u);
+    // Row 1, column 2 is the principal point.
+    EXPECT_NEAR((pts[7] - Eigen::Vector3f(2, 0, 0)).norm(), 0.0f, 1e-5f);
+    // Column 0 (image left) is +y, row 0 (image top) is +z.
+    EXPECT_GT(pts[0].y(), 1.0f);
+    EXPECT_GT(pts[0].z(), 0.5f);
+    EXPECT_NEAR(pts[0].x(), 2.0f, 1e-5f);
+}
+
+/**
+ * A camera looking along the robot's heading at a wall `depth` metres ahead of the sensor:
+ * the wall cells are occupied, the space in front is free and the space behind unknown.
+ */
+void checkWall(const FlatPose& robot, const mrpt::poses::CPose3D& sensorPose, double depth) {
+    Aabb box;
+    box.min = {-10, -10, -2};
+    box.max = {10, 10, 5};
+    ExplorationMap map(MapParams{}, box);
+    const auto obs = makeFrame(160, 120, depth, sensorPose);
+    map.insertObservation(obs, robot);
+    EXPECT_EQ(map.revision(), 1u);
+
+    const Eigen::Vector3d forward(std::cos(robot.yaw), std::sin(robot.yaw), 0.0);
+    const Eigen::Vector3d left(-std::sin(robot.yaw), std::cos(robot.yaw), 0.0);
+    const Eigen::Vector3d up(0, 0, 1);
+    const Eigen::Vector3d t(sensorPose.x(), sensorPose.y(), sensorPose.z());
+    const Eigen::Vector3d sensor = robot.position + t.x() * forward + t.y() * left + t.z() * up;
+    // The wall spans +-depth laterally (90 degree FOV) and +-0.75 depth vertically; stay
+    // within maxRange (5 m) of the sensor.
+    for (double lateral : {-0.5, 0.0, 0.5}) {
+        for (double vertical : {-0.35, 0.0, 0.35}) {
+            const Eigen::Vector3d wall =
+                sensor + depth * forward + lateral * depth * left + vertical * depth * up;
+            EXPECT_TRUE(map.isOccupied(wall)) << wall.transpose();
+            EXPECT_TRUE(map.isFree(sensor + 0.8 * (wall - sensor))) << wall.transpose();
+            EXPECT_TRUE(map.isUnknown(wall + 0.5 * forward)) << wall.transpose();
+        }
+    }
+    EXPECT_TRUE(map.isFree(sensor));
+    EXPECT_TRUE(map.isUnknown(sensor - 0.5 * forward));  // behind the camera
+    EXPECT_GT(map.knownCellsInBox(), 1000u);
+}
+
+TEST(InsertObservation, WallAtIdentityPose) {
+    checkWall(FlatPose{}, mrpt::poses::CPose3D(), 3.0);
+}
+
+TEST(InsertObservation, WallWithRobotPoseYawAndSensorOffset) {
+    checkWall(makePose(1.3, -2.1, 1.5, 0.7), mrpt::poses::CPose3D(0.15, 0.1, 0.2, 0, 0, 0), 2.7);
+    checkWall(makePose(-3.0, 4.0, 0.5, -2.5), mrpt::poses::CPose3D(0.15, 0.1, 0.2, 0, 0, 0), 4.1);
+}
+
+TEST(InsertObservation, PitchedSensorSeesTheFloor) {
+    // Camera 2 m up, pitched down 45 degrees (positive pitch looks down in MRPT), facing +x:
+    // a depth of sqrt(2)*... put the "floor" where the optical axis meets z = 0.
+    const mrpt::poses::CPose3D sensorPose(0, 0, 0, 0, M_PI / 4, 0);
+    const double depth = 2.0 * std::sqrt(2.0);
+    Aabb box;
+    box.min = {-5, -5, -2};
+    box.max = {5, 5, 4};
+    ExplorationMap map(MapParams{}, box);
+    auto obs = makeFrame(160, 120, depth, sensorPose);
+    map.insertObservation(obs, makePose(0.0, 0.0, 2.0, 0.0));
+    EXPECT_TRUE(map.isOccupied({2.0, 0.0, 0.0}));
+    EXPECT_TRUE(map.isFree({1.0, 0.0, 1.0}));
+    EXPECT_TRUE(map.isUnknown({1.0, 0.0, 3.0}));
+}
+
+TEST(InsertObservation, FarWallOnlyClearsUpToMaxRange) {
+    Aabb box;
+    box.min = {-1, -8, -4};
+    box.max = {10, 8, 4};
+    ExplorationMap map(MapParams{}, box);  // maxRange 5
+    map.insertObservation(makeFrame(80, 60, 8.0, mrpt::poses::CPose3D()), FlatPose{});
+    EXPECT_TRUE(map.isFree({4.5, 0.0, 0.0}));
+    EXPECT_TRUE(map.isUnknown({5.5, 0.0, 0.0}));
+    EXPECT_TRUE(map.isUnknown({8.1, 0.0, 0.0}));
+}
+
+TEST(InsertObservation, EqualsInsertingTheUnprojectedCloud) {
+    auto obs = makeFrame(96, 72, 3.0, mrpt::poses::CPose3D(0.1, 0, 0.1, 0, 0.1, 0));
+    std::mt19937 rng(77);
+    std::uniform_int_distribution<int> depthMm(0, 7000);
+    for (int r = 0; r < 72; ++r) {
+        for (int c = 0; c < 96; ++c) {
+            const int d = depthMm(rng);
+            obs.rangeImage(r, c) = std::uint16_t(d < 400 ? 0 : (r / 8) * 300 + d / 10 + 1500);
+        }
+    }
+    Aabb box;
+    box.min = {-6, -6, -3};
+    box.max = {6, 6, 4};
+    const FlatPose robot = makePose(0.4, 0.3, 1.0, 0.5);
+    ExplorationMap a(MapParams{}, box), b(MapParams{}, box);
+    a.insertObservation(obs, robot);
+    const mrpt::poses::CPose3D sensor =
+        mrpt::poses::CPose3D(0.4, 0.3, 1.0, 0.5, 0, 0) + obs.sensorPose;
+    b.insertPointCloud({sensor.x(), sensor.y(), sensor.z()}, unprojectDepthImage(obs, robot));
+    EXPECT_EQ(a.knownCellsInBox(), b.knownCellsInBox());
+    std::uniform_real_distribution<double> u(-6.0, 6.0);
+    for (int i = 0; i < 100000; ++i) {
+        const Eigen::Vector3d p(u(rng), u(rng), 0.5 * u(rng));
+        ASSERT_EQ(a.state(p), b.state(p)) << p.transpose();
+    }
+}
+
+}  // namespace
+}  // namespace daep::mapping

@@ -1,0 +1,243 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "MapTestUtils.h"
+#include "daep/mapping/ExplorationMap.h"
+
+namespace daep::mapping {
+namespace {
+
+using test::cellCentre;
+
+constexpr double kRes = 0.2;
+
+/** A map whose cells x 0..19, y 0..9, z 0..4 are free, i.e. [0, 4] x [0, 2] x [0, 1]. */
+class FreeBlockMap : public ::testing::Test {
+protected:
+    FreeBlockMap() : map_(params(), box()) {
+        for (int z = 0; z < 5; ++z) {
+            for (int y = 0; y < 10; ++y) {
+                test::freeRow(map_, {0, y, z});
+            }
+        }
+    }
+    static MapParams params() {
+        MapParams p;
+        p.maxRange = 20 * kRes;
+        return p;
+    }
+    static Aabb box() {
+        Aabb b;
+        b.min = {-1, -1, -1};
+        b.max = {5, 3, 2};
+        return b;
+    }
+    ExplorationMap map_;
+};
+
+TEST_F(FreeBlockMap, BlockIsFreeAndSurroundingsUnknown) {
+    EXPECT_TRUE(map_.isFree(cellCentre({0, 0, 0}, kRes)));
+    EXPECT_TRUE(map_.isFree(cellCentre({19, 9, 4}, kRes)));
+    EXPECT_TRUE(map_.isUnknown(cellCentre({20, 9, 4}, kRes)));
+    EXPECT_TRUE(map_.isUnknown(cellCentre({-1, 0, 0}, kRes)));
+}
+
+TEST_F(FreeBlockMap, IsBoxFree) {
+    EXPECT_TRUE(map_.isBoxFree({2.0, 1.0, 0.5}, {0.3, 0.3, 0.3}));
+    EXPECT_TRUE(map_.isBoxFree({2.0, 1.0, 0.5}, {1.95, 0.95, 0.45}));
+    // Touches the unknown cells beyond the block.
+    EXPECT_FALSE(map_.isBoxFree({2.0, 1.0, 0.5}, {2.05, 0.95, 0.45}));
+    EXPECT_FALSE(map_.isBoxFree({0.05, 1.0, 0.5}, {0.1, 0.1, 0.1}));
+    test::occupy(map_, cellCentre({10, 5, 2}, kRes));  // [2.0, 2.2] x [1.0, 1.2] x [0.4, 0.6]
+    EXPECT_FALSE(map_.isBoxFree({2.1, 1.1, 0.5}, {0.01, 0.01, 0.01}));
+    EXPECT_FALSE(map_.isBoxFree({1.7, 1.1, 0.5}, {0.31, 0.01, 0.01}));
+    EXPECT_TRUE(map_.isBoxFree({1.7, 1.1, 0.5}, {0.29, 0.01, 0.01}));
+}
+
+TEST_F(FreeBlockMap, SegmentAgainstHandPlacedObstacle) {
+    const Eigen::Vector3d a(0.5, 1.0, 0.5), b(3.5, 1.0, 0.5);
+    EXPECT_TRUE(map_.isSegmentFree(a, b, 0.3));
+    EXPECT_TRUE(map_.isSegmentFreeOrUnknown(a, b, 0.3));
+    // The radius reaches the unknown cells outside the block (y < 0): only isSegmentFree fails.
+    EXPECT_FALSE(map_.isSegmentFree(a, b, 1.05));
+    EXPECT_TRUE(map_.isSegmentFreeOrUnknown(a, b, 1.05));
+
+    // Obstacle cell [2.0, 2.2] x [1.4, 1.6] x [0.4, 0.6]: its box is 0.4 from the segment,
+    // its centre 0.5.
+    test::occupy(map_, cellCentre({10, 7, 2}, kRes));
+    EXPECT_TRUE(map_.isSegmentFree(a, b, 0.39));
+    EXPECT_FALSE(map_.isSegmentFree(a, b, 0.41));
+    EXPECT_TRUE(map_.isSegmentFreeOrUnknown(a, b, 0.39));
+    EXPECT_FALSE(map_.isSegmentFreeOrUnknown(a, b, 0.41));
+    // A segment ending before the obstacle: distance from the end point to the box corner.
+    const Eigen::Vector3d start(1.0, 1.0, 0.5), end(1.7, 1.0, 0.5);  // edge x=2.0, y=1.4
+    EXPECT_TRUE(map_.isSegmentFree(start, end, 0.49));
+    EXPECT_FALSE(map_.isSegmentFree(start, end, 0.51));
+    // Degenerate segment: a sphere.
+    EXPECT_TRUE(map_.isSegmentFree(end, end, 0.49));
+    EXPECT_FALSE(map_.isSegmentFree(end, end, 0.51));
+}
+
+TEST_F(FreeBlockMap, CastRayStraight) {
+    test::occupy(map_, cellCentre({15, 3, 2}, kRes));  // x in [3.0, 3.2)
+    const Eigen::Vector3d o(0.5, 0.7, 0.5);
+    EXPECT_NEAR(map_.castRay(o, {1, 0, 0}, 10.0), 2.5, 1e-9);
+    EXPECT_NEAR(map_.castRay(o, {1, 0, 0}, 2.0), 2.0, 1e-12);
+    EXPECT_NEAR(map_.castRay(o, {-1, 0, 0}, 10.0), 10.0, 1e-12);  // unknown does not stop it
+    EXPECT_NEAR(map_.castRay({3.3, 0.7, 0.5}, {-1, 0, 0}, 10.0), 0.1, 1e-9);
+    EXPECT_NEAR(map_.castRay({3.1, 0.7, 0.5}, {0, 1, 0}, 10.0), 0.0, 1e-12);  // starts inside
+}
+
+/** Cells with any state set, and a few occupied ones, in a free block with unknown holes. */
+class RandomMap : public ::testing::Test {
+protected:
+    RandomMap() : map_(params(), box()) {
+        std::mt19937 rng(2024);
+        std::uniform_int_distribution<int> cx(0, 29), cy(0, 19), cz(0, 9);
+        for (int z = 0; z < 10; ++z) {
+            for (int y = 0; y < 20; ++y) {
+                if ((y * 7 + z * 3) % 23 != 0) {  // leave some rows unknown
+                    test::freeRow(map_, {0, y, z});
+                }
+            }
+        }
+        for (int i = 0; i < 25; ++i) {
+            test::occupy(map_, cellCentre({cx(rng), cy(rng), cz(rng)}, kRes));
+        }
+    }
+    static MapParams params() {
+        MapParams p;
+        p.maxRange = 30 * kRes;
+        return p;
+    }
+    static Aabb box() {
+        Aabb b;
+        b.min = {0, 0, 0};
+        b.max = {6, 4, 2};
+        return b;
+    }
+    ExplorationMap map_;
+};
+
+double pointSegmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                            const Eigen::Vector3d& b) {
+    const Eigen::Vector3d d = b - a;
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    return (a + t * d - p).norm();
+}
+
+/**
+ * Segment-to-cell-box distance by ternary search: the distance from a point moving along a
+ * segment to a convex box is convex in the segment parameter.
+ */
+double searchedBoxDistance(const Eigen::Vector3d& lo, const Eigen::Vector3d& a,
+                           const Eigen::Vector3d& b) {
+    const auto dist = [&](double t) {
+        const Eigen::Vector3d p = a + (b - a) * t;
+        return (p - p.cwiseMax(lo).cwiseMin((lo.array() + kRes).matrix())).norm();
+    };
+    double l = 0.0, h = 1.0;
+    for (int i = 0; i < 100; ++i) {
+        const double m1 = l + (h - l) / 3.0, m2 = h - (h - l) / 3.0;
+        if (dist(m1) < dist(m2)) {
+            h = m2;
+        } else {
+            l = m1;
+        }
+    }
+    return dist(0.5 * (l + h));
+}
+
+struct Blockers {
+    bool centreWithinR = false;  ///< a blocking cell has its centre within r
+    bool boxWithinR = false;     ///< a blocking cell's box is within r
+};
+
+template <typename Blocks>
+Blockers bruteForce(const ExplorationMap& map, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                    double r, Blocks blocks) {
+    Blockers out;
+    for (int z = -8; z < 20; ++z) {
+        for (int y = -8; y < 30; ++y) {
+            for (int x = -8; x < 40; ++x) {
+                const Eigen::Vector3d c = cellCentre({x, y, z}, kRes);
+                if (!blocks(map.state(c)) ||
+                    pointSegmentDistance(c, a, b) > r + 0.5 * std::sqrt(3.0) * kRes) {
+                    continue;
+                }
+                out.centreWithinR |= pointSegmentDistance(c, a, b) <= r;
+                out.boxWithinR |= searchedBoxDistance(c.array() - 0.5 * kRes, a, b) <= r;
+            }
+        }
+    }
+    return out;
+}
+
+TEST_F(RandomMap, SegmentQueriesNeverMissABlockingCell) {
+    std::mt19937 rng(31337);
+    std::uniform_real_distribution<double> ux(-0.5, 6.5), uy(-0.5, 4.5), uz(-0.3, 2.3);
+    std::uniform_real_distribution<double> ur(0.0, 0.6);
+    int freeAnswers = 0, blockedAnswers = 0;
+    for (int i = 0; i < 400; ++i) {
+        const double shrink = i % 2 == 0 ? 1.0 : 0.6;
+        const auto sample = [&]() -> Eigen::Vector3d {
+            const Eigen::Vector3d p(ux(rng), uy(rng), uz(rng));
+            return Eigen::Vector3d(3.0, 2.0, 1.0) + shrink * (p - Eigen::Vector3d(3.0, 2.0, 1.0));
+        };
+        const Eigen::Vector3d a = sample();
+        Eigen::Vector3d b = sample();
+        if (i % 3 == 0) {
+            b = a + (b - a) * 0.15;  // short segments too
+        }
+        const double r = shrink * ur(rng);
+        const bool segFree = map_.isSegmentFree(a, b, r);
+        const Blockers notFree =
+            bruteForce(map_, a, b, r, [](CellState s) { return s != CellState::Free; });
+        ASSERT_FALSE(segFree && notFree.centreWithinR) << a.transpose() << " | " << b.transpose();
+        ASSERT_EQ(segFree, !notFree.boxWithinR) << a.transpose() << " | " << b.transpose();
+
+        const bool orUnknown = map_.isSegmentFreeOrUnknown(a, b, r);
+        const Blockers occupied =
+            bruteForce(map_, a, b, r, [](CellState s) { return s == CellState::Occupied; });
+        ASSERT_FALSE(orUnknown && occupied.centreWithinR);
+        ASSERT_EQ(orUnknown, !occupied.boxWithinR) << a.transpose() << " | " << b.transpose();
+        freeAnswers += segFree;
+        blockedAnswers += !orUnknown;
+    }
+    EXPECT_GT(freeAnswers, 10);  // both outcomes were exercised
+    EXPECT_GT(blockedAnswers, 10);
+}
+
+TEST_F(RandomMap, CastRayStopsAtEntryOfFirstOccupiedCell) {
+    std::mt19937 rng(4242);
+    std::uniform_real_distribution<double> ux(0.0, 6.0), uy(0.0, 4.0), uz(0.0, 2.0);
+    std::normal_distribution<double> n(0.0, 1.0);
+    int hits = 0;
+    for (int i = 0; i < 500; ++i) {
+        const Eigen::Vector3d o(ux(rng), uy(rng), uz(rng));
+        if (map_.isOccupied(o)) {
+            continue;
+        }
+        const Eigen::Vector3d dir = Eigen::Vector3d(n(rng), n(rng), 0.3 * n(rng)).normalized();
+        const double maxRange = 6.0;
+        const double t = map_.castRay(o, dir, maxRange);
+        ASSERT_GE(t, 0.0);
+        ASSERT_LE(t, maxRange);
+        // Nothing occupied strictly before t (fine sampling).
+        for (double s = 0.0; s < t - 1e-6; s += 0.002) {
+            ASSERT_FALSE(map_.isOccupied(o + s * dir)) << i << " at " << s << " of " << t;
+        }
+        ASSERT_FALSE(map_.isOccupied(o + (t - 1e-6) * dir));
+        if (t < maxRange) {
+            ASSERT_TRUE(map_.isOccupied(o + (t + 1e-6) * dir)) << i;
+            ++hits;
+        }
+    }
+    EXPECT_GT(hits, 20);
+}
+
+}  // namespace
+}  // namespace daep::mapping
