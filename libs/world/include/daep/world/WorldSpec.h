@@ -49,9 +49,19 @@ struct WorldSpec {
     std::vector<TriangleMesh> meshes;
     std::vector<Eigen::Vector3d> starts;  ///< spawn positions (the drone then climbs 1 m)
     std::vector<PersonRoute> people;      ///< empty routes in static mode
+    /** `exploration_volume` from the world file (m^3), 0 when absent. */
+    double declaredVolume = 0.0;
 
     /** Bounds of all static geometry and the exploration box. */
     Aabb bounds() const;
+
+    /**
+     * Volume that normalises coverage: the declared volume when given (Cafe: 510 m^3 as in
+     * the benchmark config and the paper, while its box holds 517.5), else the box's volume.
+     */
+    double explorationVolume() const {
+        return declaredVolume > 0.0 ? declaredVolume : explorationBox.volume();
+    }
 };
 
 /**
