@@ -133,6 +133,10 @@ struct BadInputCase {
     std::vector<std::string> messageParts;
 };
 
+void PrintTo(const BadInputCase& c, std::ostream* os) {
+    *os << c.name;
+}
+
 class ExploreAppBadInput : public ::testing::TestWithParam<BadInputCase> {};
 
 TEST_P(ExploreAppBadInput, ExitsNonZeroWithAClearMessage) {
@@ -213,4 +217,4 @@ std::vector<BadInputCase> badInputCases() {
 }  // namespace
 
 INSTANTIATE_TEST_SUITE_P(Errors, ExploreAppBadInput, ::testing::ValuesIn(badInputCases()),
-                         [](const auto& info) { return info.param.name; });
+                         [](const auto& testInfo) { return testInfo.param.name; });

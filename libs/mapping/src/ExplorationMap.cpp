@@ -56,7 +56,7 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
         inBox[a].resize(std::size_t(dims[a]));
         for (int i = 0; i < dims[a]; ++i) {
             const double c = tree.keyToCoord(octomap::key_type(kLo[a] + i));
-            inBox[a][std::size_t(i)] = c >= box.min[a] && c <= box.max[a];
+            inBox[a][std::size_t(i)] = c >= box.min[a] && c < box.max[a];
         }
     }
     scale = 1.0 / tree.getResolution();

@@ -50,7 +50,8 @@ std::string formatPoint(const Eigen::Vector3d& p) {
 
 struct Mission::Impl {
     Impl(const ExperimentConfig& config, const std::string& outputDir, std::ostream* logStream)
-        : settings(loadSettings(config)),
+        : configForStart(&config.config()),
+          settings(loadSettings(config)),
           world(loadWorld(settings, config.source())),
           people(world.people, loadPeopleParams(config.config())),
           caster(world),
@@ -68,28 +69,28 @@ struct Mission::Impl {
         framePeriod = 1.0 / camera.params().rateHz;
     }
 
+    /** The drone rests on the start point: its box's bottom face is at the start's z. */
     FlatPose startPose() const {
         FlatPose p;
         p.position = world.starts[settings.start];
+        p.position.z() += 0.5 * loadDroneParams(*configForStart).boxSize.z();
         return p;
     }
 
     void checkStartIsFree() const {
-        const Eigen::Vector3d s = world.starts[settings.start];
+        const Eigen::Vector3d given = world.starts[settings.start];
+        const Eigen::Vector3d s = startPose().position;
         const Eigen::Vector3d top = s + Eigen::Vector3d(0, 0, settings.climb);
-        const Eigen::Vector3d size = drone.params().boxSize;
+        const std::string which = world.sourceFile + ": start " + std::to_string(settings.start) +
+                                  " " + formatPoint(given);
         for (double f = 0; f <= 1.0 + kEps; f += 0.1) {
             const Eigen::Vector3d p = s + f * (top - s);
-            if (statics.overlaps(p, size, 0.0))
-                throw InputError(world.sourceFile + ": start " + std::to_string(settings.start) +
-                                 " " + formatPoint(s) + ": the drone box at " + formatPoint(p) +
+            if (statics.overlaps(p, drone.params().boxSize, 0.0))
+                throw InputError(which + ": the drone box at " + formatPoint(p) +
                                  " (take-off) is inside static geometry");
         }
         if (!world.explorationBox.contains(top))
-            throw InputError(world.sourceFile + ": start " + std::to_string(settings.start) + " " +
-                             formatPoint(s) +
-                             ": after the climb the drone is outside the "
-                             "exploration box");
+            throw InputError(which + ": after the climb the drone is outside the exploration box");
     }
 
     /** Known volume over the world's exploration volume (Cafe declares 510 m^3, as the paper). */
@@ -266,6 +267,7 @@ struct Mission::Impl {
         return s;
     }
 
+    const mrpt::config::CConfigFileBase* configForStart;
     Settings settings;
     world::WorldSpec world;
     world::PeopleSimulator people;

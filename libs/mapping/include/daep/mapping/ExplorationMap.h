@@ -34,7 +34,9 @@ struct MapParams {
  * millions of point queries are array lookups. Coverage is kept incrementally.
  *
  * Cells are the octree's leaf voxels at `resolution`; a cell belongs to the exploration box
- * when its centre lies inside the box.
+ * when its centre lies in [min, max) on every axis. The half-open interval matters when a
+ * box face falls exactly on cell centres: a closed one would count one extra layer and let
+ * coverage pass 100 %.
  */
 class ExplorationMap {
 public:
