@@ -70,8 +70,12 @@ inline std::string readFile(const std::string& path) {
     return ss.str();
 }
 
+/** All default parameter files (defaults.ini and one per planner), concatenated. */
 inline std::string defaultsText() {
-    return readFile(std::string(DAEP_SOURCE_DIR) + "/share/daep/config/defaults.ini");
+    const std::string dir = std::string(DAEP_SOURCE_DIR) + "/share/daep/config/";
+    std::string text = readFile(dir + "defaults.ini");
+    for (const char* planner : {"rhnbvp.ini"}) text += "\n" + readFile(dir + planner);
+    return text;
 }
 
 /** The ini text with `key` of `[section]` removed (or its value replaced when value given). */

@@ -3,6 +3,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -71,6 +72,21 @@ std::string readFile(const std::string& path) {
     return ss.str();
 }
 
+/** defaults.ini first, then every other .ini file in share/daep/config (one per planner), sorted. */
+std::vector<std::string> defaultFiles() {
+    const std::filesystem::path dir = std::filesystem::path(shareDirectory()) / "config";
+    const std::filesystem::path main = dir / "defaults.ini";
+    if (!std::filesystem::is_regular_file(main))
+        throw InputError(main.string() + ": default parameters not found (set DAEP_SHARE_DIR?)");
+    std::vector<std::string> others;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        if (e.path().extension() == ".ini" && e.path() != main)
+            others.push_back(e.path().string());
+    std::sort(others.begin(), others.end());
+    others.insert(others.begin(), main.string());
+    return others;
+}
+
 }  // namespace
 
 struct ExperimentConfig::Impl {
@@ -115,13 +131,18 @@ ExperimentConfig ExperimentConfig::fromFile(const std::string& path,
 
 ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::string& source,
                                             const std::vector<std::string>& overrides) {
-    const std::string defaultsPath = shareDirectory() + "/config/defaults.ini";
     ExperimentConfig cfg;
     cfg.source_ = source;
     std::map<std::string, std::vector<std::string>> known;
-    for (const auto& l : parseIni(readFile(defaultsPath), defaultsPath)) {
-        cfg.set(l.section, l.key, l.value);
-        known[l.section].push_back(l.key);
+    for (const auto& path : defaultFiles()) {
+        for (const auto& l : parseIni(readFile(path), path)) {
+            auto& keys = known[l.section];
+            if (std::count(keys.begin(), keys.end(), l.key))
+                throw InputError(path + ":" + std::to_string(l.line) + ": [" + l.section + "] " +
+                                 l.key + " is already defined by another defaults file");
+            cfg.set(l.section, l.key, l.value);
+            keys.push_back(l.key);
+        }
     }
     const auto checkKnown = [&](const std::string& where, const std::string& section,
                                 const std::string& key) {
