@@ -121,6 +121,7 @@ void RunRecorder::writeSummary(const RunSummary& s) const {
     std::fprintf(f, "  \"collisions\": %d,\n", s.collisions);
     std::fprintf(f, "  \"static_collisions\": %d,\n", s.staticCollisions);
     std::fprintf(f, "  \"iterations\": %d,\n", s.iterations);
+    std::fprintf(f, "  \"aborted_paths\": %d,\n", s.abortedPaths);
     std::fprintf(f, "  \"finished\": %s,\n", s.finished ? "true" : "false");
     std::fprintf(f, "  \"end_reason\": %s,\n", jsonString(s.endReason).c_str());
     std::fprintf(f, "  \"known_volume_m3\": %.4f,\n", s.knownVolume);

@@ -169,11 +169,18 @@ struct Mission::Impl {
         return false;
     }
 
-    void flyTo(const FlatPose& goal) {
+    /** Flies to the goal; returns false when the planner aborted the flight. */
+    bool flyTo(const FlatPose& goal, const planning::Plan* plan = nullptr, std::size_t index = 0) {
         drone.setGoal(goal);
-        while (drone.hasGoal() && !stopping())
+        bool aborted = false;
+        while (drone.hasGoal() && !stopping() && !aborted) {
+            const std::uint64_t mapBefore = map.revision();
             advance(framePeriod, true);
+            if (plan && drone.hasGoal() && map.revision() != mapBefore)
+                aborted = !planner->keepFlying(context(), *plan, index);
+        }
         drone.clearGoal();
+        return !aborted;
     }
 
     void takeOffAndLookAround() {
@@ -188,7 +195,7 @@ struct Mission::Impl {
         }
     }
 
-    planning::Plan planOnce() {
+    planning::PlanningContext context() const {
         planning::PlanningContext ctx;
         ctx.time = t;
         ctx.pose = drone.pose();
@@ -196,6 +203,11 @@ struct Mission::Impl {
         ctx.explorationBox = world.explorationBox;
         ctx.motion.speed = drone.params().speed;
         ctx.motion.yawRate = drone.params().yawRate;
+        return ctx;
+    }
+
+    planning::Plan planOnce() {
+        const planning::PlanningContext ctx = context();
         const auto t0 = Clock::now();
         planning::Plan plan = planner->plan(ctx);
         const double wall = secondsSince(t0);
@@ -227,10 +239,11 @@ struct Mission::Impl {
                 continue;
             }
             failedPlans = 0;
-            for (const auto& wp : plan.waypoints) {
-                if (stopping())
+            for (std::size_t i = 0; i < plan.waypoints.size() && !stopping(); ++i) {
+                if (!flyTo(plan.waypoints[i].pose, &plan, i)) {
+                    ++abortedPaths;
                     break;
-                flyTo(wp.pose);
+                }
             }
             recorder.flush();
         }
@@ -253,6 +266,7 @@ struct Mission::Impl {
         s.collisions = monitor.personCollisions();
         s.staticCollisions = monitor.staticCollisions();
         s.iterations = iterations;
+        s.abortedPaths = abortedPaths;
         s.finished = finished;
         s.endReason = endReason;
         s.wallTime = wallTime;
@@ -293,6 +307,7 @@ struct Mission::Impl {
     double pathLength = 0.0;
     double planningCharged = 0.0;
     int iterations = 0;
+    int abortedPaths = 0;
     bool finished = false;
     std::string endReason;
 };

@@ -1,6 +1,7 @@
 #include "daep/planning/Planner.h"
 
 #include <cmath>
+#include <utility>
 
 #include "daep/common/Error.h"
 #include "daep/planning/RhNbvpPlanner.h"
@@ -13,17 +14,40 @@ double MotionLimits::travelTime(const FlatPose& a, const FlatPose& b) const {
     return turn + fly;
 }
 
+namespace {
+
+using PlannerFactory = std::unique_ptr<ExplorationPlanner> (*)(
+    const mrpt::config::CConfigFileBase& config, std::uint64_t seed);
+
+std::unique_ptr<ExplorationPlanner> makeRhNbvp(const mrpt::config::CConfigFileBase& config,
+                                               std::uint64_t seed) {
+    return std::make_unique<RhNbvpPlanner>(RhNbvpParams::fromConfig(config),
+                                           GainParams::fromConfig(config), seed);
+}
+
+/** Every planner, by the name used in [experiment] planner; keep sorted by name. */
+const std::vector<std::pair<std::string, PlannerFactory>>& factories() {
+    static const std::vector<std::pair<std::string, PlannerFactory>> table = {
+        {"rhnbvp", &makeRhNbvp},
+    };
+    return table;
+}
+
+}  // namespace
+
 std::vector<std::string> plannerNames() {
-    return {"rhnbvp"};
+    std::vector<std::string> names;
+    for (const auto& entry : factories())
+        names.push_back(entry.first);
+    return names;
 }
 
 std::unique_ptr<ExplorationPlanner> createPlanner(const std::string& name,
                                                   const mrpt::config::CConfigFileBase& config,
                                                   std::uint64_t seed) {
-    if (name == "rhnbvp") {
-        return std::make_unique<RhNbvpPlanner>(RhNbvpParams::fromConfig(config),
-                                               GainParams::fromConfig(config), seed);
-    }
+    for (const auto& [known, factory] : factories())
+        if (known == name)
+            return factory(config, seed);
     std::string valid;
     for (const std::string& n : plannerNames())
         valid += (valid.empty() ? "" : ", ") + n;

@@ -30,6 +30,7 @@ struct RunSummary {
     int collisions = 0;
     int staticCollisions = 0;
     int iterations = 0;
+    int abortedPaths = 0;  ///< paths the planner stopped in flight (re-plans)
     bool finished = false;
     double wallTime = 0.0;
     double knownVolume = 0.0;

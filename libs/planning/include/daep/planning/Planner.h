@@ -44,9 +44,9 @@ struct Plan {
     };
     Status status = Status::Finished;
     std::vector<Waypoint> waypoints;
-    double gain = 0.0;    ///< gain of the chosen goal (m^3 of unknown volume)
-    double score = 0.0;   ///< planner-specific value of the chosen branch
-    std::string reason;   ///< short human-readable note (why finished, local/global, ...)
+    double gain = 0.0;   ///< gain of the chosen goal (m^3 of unknown volume)
+    double score = 0.0;  ///< planner-specific value of the chosen branch
+    std::string reason;  ///< short human-readable note (why finished, local/global, ...)
     std::vector<TreeEdge> tree;
 };
 
@@ -66,6 +66,19 @@ public:
     virtual std::string name() const = 0;
     /** Plans from the context's state. Deterministic for a given seed and input sequence. */
     virtual Plan plan(const PlanningContext& context) = 0;
+
+    /**
+     * Asked while `plan` is flown, after every map update, with the index of the waypoint the
+     * drone is flying to. Returning false makes the mission stop the drone where it is and
+     * call plan() again (re-planning when the path became unsafe). Default: keep flying.
+     */
+    virtual bool keepFlying(const PlanningContext& context, const Plan& plan,
+                            std::size_t nextWaypoint) {
+        (void)context;
+        (void)plan;
+        (void)nextWaypoint;
+        return true;
+    }
 };
 
 /** Planner names accepted by createPlanner, sorted. */
