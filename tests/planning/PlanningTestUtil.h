@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -74,7 +76,12 @@ inline std::string readFile(const std::string& path) {
 inline std::string defaultsText() {
     const std::string dir = std::string(DAEP_SOURCE_DIR) + "/share/daep/config/";
     std::string text = readFile(dir + "defaults.ini");
-    for (const char* planner : {"rhnbvp.ini"}) text += "\n" + readFile(dir + planner);
+    std::vector<std::string> planners;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        if (e.path().extension() == ".ini" && e.path().filename() != "defaults.ini")
+            planners.push_back(e.path().string());
+    std::sort(planners.begin(), planners.end());
+    for (const auto& p : planners) text += "\n" + readFile(p);
     return text;
 }
 
