@@ -5,7 +5,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
