@@ -2,7 +2,7 @@
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 JOBS ?= $(shell nproc)
-DEMO_CONFIG ?= config-ini/exhibition_dynamic_rhnbvp.ini
+DEMO_CONFIG ?= config-ini/exhibition_dynamic.ini
 DEMO_OUT ?= out/demo
 
 CMAKE_FLAGS = -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
