@@ -1,5 +1,7 @@
 #include "daep/mapping/ExplorationMap.h"
 
+#include <fstream>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -189,11 +191,22 @@ Eigen::Vector3d ExplorationMap::cellCenter(const Eigen::Vector3d& p) const {
 }
 
 bool ExplorationMap::writeBinary(const std::string& path) const {
+    // The .bt header written by hand: OcTree::writeBinaryConst prints debug text to stderr.
+    std::ofstream out(path, std::ios::binary);
+    if (!out)
+        return false;
+    const auto& t = impl_->tree;
+    out << "# Octomap OcTree binary file\n"
+        << "id " << t.getTreeType() << "\n"
+        << "size " << t.size() << "\n"
+        << "res " << t.getResolution() << "\n"
+        << "data\n";
     try {
-        return impl_->tree.writeBinaryConst(path);
+        t.writeBinaryData(out);
     } catch (const std::exception&) {
         return false;
     }
+    return bool(out.flush());
 }
 
 }  // namespace daep::mapping
