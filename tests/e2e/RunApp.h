@@ -1,6 +1,7 @@
 #pragma once
 
 #include <unistd.h>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,18 +32,22 @@ inline std::filesystem::path freshDir(const std::string& name) {
     return dir;
 }
 
-/** Runs daep-explore with the arguments (already shell-quoted), capturing both streams. */
-inline AppResult runExplore(const std::string& args, const std::filesystem::path& scratch) {
+/** Runs a binary with the arguments (already shell-quoted), capturing both streams. */
+inline AppResult runApp(const std::string& binary, const std::string& args,
+                        const std::filesystem::path& scratch) {
     const auto out = scratch / "stdout.txt";
     const auto err = scratch / "stderr.txt";
-    const std::string cmd =
-        std::string(DAEP_EXPLORE_BIN) + " " + args + " > " + out.string() + " 2> " + err.string();
+    const std::string cmd = binary + " " + args + " > " + out.string() + " 2> " + err.string();
     const int status = std::system(cmd.c_str());
     AppResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = readText(out);
     r.err = readText(err);
     return r;
+}
+
+inline AppResult runExplore(const std::string& args, const std::filesystem::path& scratch) {
+    return runApp(DAEP_EXPLORE_BIN, args, scratch);
 }
 
 /** The number after "key": in a flat JSON object; NaN if absent. */
