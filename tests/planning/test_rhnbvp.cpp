@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <set>
 
@@ -209,12 +211,16 @@ TEST(MotionLimits, TurnsThenFlies) {
     EXPECT_NEAR(m.travelTime(a, b), (2 * M_PI - 6.0) / 2.0, 1e-12);
 }
 
-TEST(CreatePlanner, KnowsRhNbvp) {
+TEST(CreatePlanner, EveryListedPlannerIsCreatedUnderItsName) {
     const auto cfg = test::configFromText(test::defaultsText());
-    EXPECT_EQ(plannerNames(), std::vector<std::string>{"rhnbvp"});
-    const auto planner = createPlanner("rhnbvp", *cfg, 1);
-    ASSERT_NE(planner, nullptr);
-    EXPECT_EQ(planner->name(), "rhnbvp");
+    const auto names = plannerNames();
+    EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
+    EXPECT_NE(std::find(names.begin(), names.end(), "rhnbvp"), names.end());
+    for (const auto& name : names) {
+        const auto planner = createPlanner(name, *cfg, 1);
+        ASSERT_NE(planner, nullptr) << name;
+        EXPECT_EQ(planner->name(), name);
+    }
 }
 
 TEST(CreatePlanner, UnknownNameListsTheValidOnes) {
@@ -223,7 +229,10 @@ TEST(CreatePlanner, UnknownNameListsTheValidOnes) {
         createPlanner("nbv", *cfg, 1);
         FAIL() << "unknown planner accepted";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), "unknown planner 'nbv'; valid planners: rhnbvp");
+        std::string valid;
+        for (const auto& n : plannerNames())
+            valid += (valid.empty() ? "" : ", ") + n;
+        EXPECT_EQ(std::string(e.what()), "unknown planner 'nbv'; valid planners: " + valid);
     }
 }
 
