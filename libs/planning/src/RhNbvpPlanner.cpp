@@ -28,16 +28,8 @@ RhNbvpPlanner::RhNbvpPlanner(const RhNbvpParams& params, const GainParams& gain,
 
 bool RhNbvpPlanner::edgeValid(const PlanningContext& context, int parent,
                               const Eigen::Vector3d& to) const {
-    const mapping::ExplorationMap& map = *context.map;
-    const Eigen::Vector3d& from = tree_.node(parent).position;
-    const double r = params_.robotRadius;
-    if (parent == 0 && !rootFree_) {
-        // Skip the root's own ball: check the capsule from one radius out along the edge.
-        const double length = (to - from).norm();
-        const Eigen::Vector3d start = length > r ? from + (to - from) * (r / length) : to;
-        return map.isSegmentFreeOrUnknown(start, to, r) && map.isSegmentFree(to, to, r);
-    }
-    return map.isSegmentFree(from, to, r);
+    return segmentFlyable(*context.map, tree_.node(parent).position, to, params_.robotRadius,
+                          parent == 0 && !rootFree_);
 }
 
 int RhNbvpPlanner::addNode(const PlanningContext& context, int parent,

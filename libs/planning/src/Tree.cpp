@@ -1,5 +1,7 @@
 #include "daep/planning/Tree.h"
 
+#include "daep/mapping/ExplorationMap.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -94,6 +96,16 @@ Eigen::Vector3d sampleInBox(const Aabb& box, std::mt19937_64& rng) {
 
 double sampleYaw(std::mt19937_64& rng) {
     return std::uniform_real_distribution<double>(-M_PI, M_PI)(rng);
+}
+
+bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
+                    const Eigen::Vector3d& b, double radius, bool leavingBlockedRoot) {
+    if (!leavingBlockedRoot)
+        return map.isSegmentFree(a, b, radius);
+    const double length = (b - a).norm();
+    const Eigen::Vector3d start =
+        length > radius ? Eigen::Vector3d(a + (b - a) * (radius / length)) : b;
+    return map.isSegmentFreeOrUnknown(start, b, radius) && map.isSegmentFree(b, b, radius);
 }
 
 }  // namespace daep::planning
