@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "daep/common/Error.h"
+#include "daep/planning/AepPlanner.h"
 #include "daep/planning/RhNbvpPlanner.h"
 
 namespace daep::planning {
@@ -19,16 +20,19 @@ namespace {
 using PlannerFactory = std::unique_ptr<ExplorationPlanner> (*)(
     const mrpt::config::CConfigFileBase& config, std::uint64_t seed);
 
-std::unique_ptr<ExplorationPlanner> makeRhNbvp(const mrpt::config::CConfigFileBase& config,
-                                               std::uint64_t seed) {
-    return std::make_unique<RhNbvpPlanner>(RhNbvpParams::fromConfig(config),
-                                           GainParams::fromConfig(config), seed);
+/** Every planner reads its own parameters and the shared [gain] section. */
+template <class PlannerType, class ParamsType>
+std::unique_ptr<ExplorationPlanner> make(const mrpt::config::CConfigFileBase& config,
+                                         std::uint64_t seed) {
+    return std::make_unique<PlannerType>(ParamsType::fromConfig(config),
+                                         GainParams::fromConfig(config), seed);
 }
 
 /** Every planner, by the name used in [experiment] planner; keep sorted by name. */
 const std::vector<std::pair<std::string, PlannerFactory>>& factories() {
     static const std::vector<std::pair<std::string, PlannerFactory>> table = {
-        {"rhnbvp", &makeRhNbvp},
+        {"aep", &make<AepPlanner, AepParams>},
+        {"rhnbvp", &make<RhNbvpPlanner, RhNbvpParams>},
     };
     return table;
 }

@@ -1,0 +1,134 @@
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "daep/planning/GainCache.h"
+#include "daep/planning/GainEvaluator.h"
+#include "daep/planning/GaussianProcess.h"
+#include "daep/planning/Planner.h"
+#include "daep/planning/Tree.h"
+
+namespace daep::planning {
+
+/** Sections [aep] and [planning]. */
+struct AepParams {
+    double extensionRange = 1.0;
+    double samplingRadius = 10.0;
+    double rewireRadius = 1.5;
+    int initialIterations = 15;
+    int cutoffIterations = 30;
+    int maxSamples = 2000;
+    double lambda = 0.75;
+    double zeroGain = 25.0;
+    double sigmaThreshold = 0.2;
+    GpParams gp;
+    double gpRadius = 2.0;
+    int gpMaxNeighbours = 10;
+    double cacheThreshold = 15.0;
+    double cacheUpdateRadius = 5.0;
+    int globalMinNodes = 100;
+    int globalMaxNodes = 1500;
+    int globalMaxSamples = 20000;
+    double globalGoalBias = 0.2;
+    double goalRadius = 1.5;
+    int globalPlannerCounter = 25;
+    double robotRadius = 0.3;
+
+    /** Reads and validates the keys; throws InputError naming the bad key. */
+    static AepParams fromConfig(const mrpt::config::CConfigFileBase& config);
+};
+
+/** Counters of the last plan() call, for tests and benchmarks. */
+struct AepStats {
+    int rayCasts = 0;
+    int gpPredictions = 0;
+    int cacheRefreshed = 0;
+    int cacheDropped = 0;
+    int samples = 0;
+    bool global = false;
+};
+
+/**
+ * Autonomous Exploration Planner (Selin et al. 2019).
+ *
+ * Local: an RRT* grown from the pose with samples drawn uniformly in the 3D ball of
+ * max_sampling_radius clipped to the exploration box (not AEP's x/y-only "dimension reduction";
+ * the worlds are 2-2.5 m tall, so the two differ little). Nodes lie in known free space with the
+ * robot capsule clear. Node value = parent value + gain * exp(-lambda * edge length); the gain
+ * is the best-yaw cubature, or the gain cache's Gaussian-process estimate where it is confident.
+ * The first edge of the best branch is flown and the rest of the branch seeds the next tree.
+ *
+ * Global: when no branch is worth more than zero_gain, the cached viewpoints (gain above
+ * cache_node_threshold) are the frontiers. An RRT* through known free space (at least
+ * global_min_nodes) gives the cheapest path to one, flown in full and ending at the frontier's
+ * best yaw. The global tree's nodes are also gain-evaluated, so viewpoints that no local tree
+ * reached become frontiers too. No frontier left after a full global tree: finished.
+ */
+class AepPlanner : public ExplorationPlanner {
+public:
+    AepPlanner(const AepParams& params, const GainParams& gain, std::uint64_t seed);
+
+    std::string name() const override { return "aep"; }
+    Plan plan(const PlanningContext& context) override;
+    bool keepFlying(const PlanningContext& context, const Plan& plan,
+                    std::size_t nextWaypoint) override;
+
+    const Tree& tree() const { return tree_; }
+    const GainCache& cache() const { return cache_; }
+    GainCache& cache() { return cache_; }
+    const AepParams& params() const { return params_; }
+    const AepStats& stats() const { return stats_; }
+
+    /** Gain and yaw at p: the cache's GP estimate when confident, else ray cast (and cached). */
+    YawGain evaluateGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p);
+
+    /** Re-casts cached viewpoints near the places flown since the last call; drops weak ones. */
+    void refreshCache(const mapping::ExplorationMap& map, const Eigen::Vector3d& pose);
+
+private:
+    bool edgeValid(const PlanningContext& context, int parent, const Eigen::Vector3d& to) const;
+    Eigen::Vector3d sampleLocal(const Eigen::Vector3d& center);
+    /**
+     * One RRT* step towards the sample: steer, pick the cheapest valid parent within the rewire
+     * radius, add the node (with its gain in a local tree), rewire neighbours through it.
+     * Returns the new node or -1.
+     */
+    int extend(const PlanningContext& context, const Eigen::Vector3d& sample);
+    void setParent(int node, int parent);
+    void propagate(int node);
+    /** Appends a node under parent and sets its cost and score from the parent's. */
+    int addNode(int parent, const Eigen::Vector3d& p, const YawGain& view);
+    void reinsertPreviousBranch(const PlanningContext& context);
+    void growLocal(const PlanningContext& context);
+    void resetTree(const PlanningContext& context);
+    Plan localPlan(const PlanningContext& context);
+    Plan globalPlan(const PlanningContext& context, double localScore);
+    /** Re-casts a cached viewpoint; drops it (false) when its gain fell to the threshold. */
+    bool verifyFrontier(const mapping::ExplorationMap& map, int id);
+    void growGlobal(const PlanningContext& context, const std::vector<int>& frontiers);
+    std::vector<Eigen::Vector3d> shortcut(const PlanningContext& context,
+                                          const std::vector<Eigen::Vector3d>& path) const;
+    Plan pathPlan(const PlanningContext& context, const std::vector<Eigen::Vector3d>& path,
+                  double finalYaw) const;
+
+    AepParams params_;
+    GainEvaluator gain_;
+    GaussianProcess gp_;
+    GainCache cache_;
+    std::mt19937_64 rng_;
+    Tree tree_;
+    std::vector<std::vector<int>> children_;
+    Aabb samplingBox_;
+    bool rootFree_ = true;
+    bool globalTree_ = false;
+    int best_ = -1;
+    int globalFailures_ = 0;
+    AepStats stats_;
+    std::vector<FlatPose> previousBranch_;
+    std::vector<Eigen::Vector3d> trail_;  ///< where the drone flew since the last plan
+};
+
+}  // namespace daep::planning

@@ -1,0 +1,281 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "PlanningTestUtil.h"
+#include "daep/common/Error.h"
+#include "daep/planning/AepPlanner.h"
+#include "daep/planning/Planner.h"
+
+namespace daep::planning {
+namespace {
+
+using test::box;
+
+AepPlanner makePlanner(std::uint64_t seed) {
+    const auto cfg = test::configFromText(test::defaultsText());
+    return AepPlanner(AepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), seed);
+}
+
+PlanningContext contextFor(const mapping::ExplorationMap& map, const Eigen::Vector3d& position,
+                           double yaw = 0.0) {
+    PlanningContext c;
+    c.time = 5.0;
+    c.pose.position = position;
+    c.pose.yaw = yaw;
+    c.map = &map;
+    c.explorationBox = map.explorationBox();
+    return c;
+}
+
+/** Points in every direction from `origin`, `distance` away (beyond the mapping range). */
+std::vector<Eigen::Vector3f> sphereScan(const Eigen::Vector3d& origin, double distance) {
+    std::vector<Eigen::Vector3f> points;
+    for (double el = -90.0; el <= 90.0; el += 1.0)
+        for (double az = 0.0; az < 360.0; az += 1.0) {
+            const double e = el * M_PI / 180.0;
+            const double a = az * M_PI / 180.0;
+            const Eigen::Vector3d d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a),
+                                    std::sin(e));
+            points.push_back((origin + distance * d).cast<float>());
+        }
+    return points;
+}
+
+/** Known free for x < knownUntil (no obstacles), unknown beyond; box 0..length x 0..4 x 0..2. */
+std::unique_ptr<mapping::ExplorationMap> westKnown(double length, double knownUntil) {
+    auto map = test::makeMap(box(0, 0, 0, length, 4, 2), 15.0);
+    for (double y = 0.1; y < 4.0; y += 0.2)
+        for (double z = 0.1; z < 2.0; z += 0.2)
+            map->insertPointCloud({knownUntil - 0.1, y, z},
+                                  {Eigen::Vector3f(-100.f, float(y), float(z))});
+    return map;
+}
+
+TEST(AepGain, CubatureMatchesTheAnalyticUnknownShell) {
+    // A ball of radius 2 m around p is known free, everything else unknown: the gain is the
+    // field-of-view sector of the shell between 2 and 5 m.
+    const Eigen::Vector3d p(20.0, 20.0, 20.0);
+    auto map = test::makeMap(box(0, 0, 0, 40, 40, 40), 2.0);
+    map->insertPointCloud(p, sphereScan(p, 30.0));
+    AepPlanner planner = makePlanner(1);
+    const GainEvaluator evaluator(GainParams{});
+    const double solid =
+        GainParams{}.hfov * (std::cos(evaluator.phiMin()) - std::cos(evaluator.phiMax()));
+    const double shell = solid * (std::pow(5.0, 3) - std::pow(2.0, 3)) / 3.0;
+    const YawGain g = planner.evaluateGain(*map, p);
+    EXPECT_NEAR(g.gain, shell, 0.04 * shell);
+    EXPECT_EQ(planner.stats().rayCasts, 1);
+    // Fully unknown: the whole view volume, exactly (the dr^3/12 term included).
+    auto unknown = test::makeMap(box(0, 0, 0, 40, 40, 40));
+    const double full = solid * 125.0 / 3.0;
+    EXPECT_NEAR(planner.evaluateGain(*unknown, {5.0, 5.0, 5.0}).gain, full, 1e-9 * full);
+}
+
+TEST(AepGain, BestYawFacesTheUnknownSide) {
+    auto map = westKnown(8.0, 4.0);
+    for (const Eigen::Vector3d& p :
+         {Eigen::Vector3d(2.5, 2.0, 1.0), Eigen::Vector3d(3.0, 1.5, 0.7)}) {
+        AepPlanner planner = makePlanner(2);
+        const YawGain g = planner.evaluateGain(*map, p);
+        EXPECT_GT(std::cos(g.yaw), 0.9) << g.yaw;
+        EXPECT_GT(g.gain, 0.0);
+    }
+}
+
+TEST(AepGain, ConfidentCacheReplacesRayCasting) {
+    auto map = test::makeMap(box(0, 0, 0, 40, 40, 40));
+    AepPlanner planner = makePlanner(3);
+    const Eigen::Vector3d p(10, 10, 10);
+    const YawGain first = planner.evaluateGain(*map, p);  // ray cast and cached
+    EXPECT_EQ(planner.cache().size(), 1u);
+    EXPECT_EQ(planner.stats().rayCasts, 1);
+    // Right next to a cached viewpoint the GP is confident: its mean, no ray cast.
+    const YawGain near = planner.evaluateGain(*map, p + Eigen::Vector3d(0.05, 0.0, 0.0));
+    EXPECT_EQ(planner.stats().rayCasts, 1);
+    EXPECT_EQ(planner.stats().gpPredictions, 1);
+    EXPECT_NEAR(near.gain, first.gain * std::exp(-0.05 * 0.05 / 2.0) / 1.01, 1e-9);
+    EXPECT_DOUBLE_EQ(near.yaw, first.yaw);
+    EXPECT_EQ(planner.cache().size(), 1u);
+    // 1 m away the GP is unsure: ray cast, and the new viewpoint is cached too.
+    planner.evaluateGain(*map, p + Eigen::Vector3d(1.0, 0, 0));
+    EXPECT_EQ(planner.stats().rayCasts, 2);
+    EXPECT_EQ(planner.cache().size(), 2u);
+}
+
+TEST(AepGain, RefreshDropsCachedViewpointsThatBecameKnown) {
+    auto map = westKnown(16.0, 4.0);
+    AepPlanner planner = makePlanner(4);
+    const Eigen::Vector3d p(3.5, 2.0, 1.0);
+    planner.evaluateGain(*map, p);
+    ASSERT_EQ(planner.cache().size(), 1u);
+    // Now map everything up to x = 14: nothing unknown within 5 m of p.
+    for (double y = 0.1; y < 4.0; y += 0.2)
+        for (double z = 0.1; z < 2.0; z += 0.2)
+            map->insertPointCloud({13.9, y, z}, {Eigen::Vector3f(-100.f, float(y), float(z))});
+    planner.refreshCache(*map, {6.0, 2.0, 1.0});
+    EXPECT_EQ(planner.cache().size(), 0u);
+    EXPECT_EQ(planner.stats().cacheDropped, 1);
+}
+
+void expectConsistentTree(const AepPlanner& planner, const mapping::ExplorationMap& map,
+                          bool scores) {
+    const Tree& tree = planner.tree();
+    const AepParams& p = planner.params();
+    const Aabb inner = shrink(map.explorationBox(), p.robotRadius);
+    for (int i = 1; i < tree.size(); ++i) {
+        const TreeNode& n = tree.node(i);
+        ASSERT_GE(n.parent, 0);
+        const TreeNode& parent = tree.node(n.parent);
+        const double edge = (n.position - parent.position).norm();
+        EXPECT_TRUE(inner.contains(n.position)) << i;
+        EXPECT_TRUE(map.isSegmentFree(parent.position, n.position, p.robotRadius)) << i;
+        EXPECT_NEAR(n.cost, parent.cost + edge, 1e-9) << i;
+        if (scores) {
+            EXPECT_NEAR(n.score, parent.score + n.gain * std::exp(-p.lambda * edge), 1e-9) << i;
+        }
+        // No cycles: the branch reaches the root within size() steps.
+        EXPECT_LE(tree.branch(i).size(), std::size_t(tree.size()));
+    }
+}
+
+/** RRT*: no node could be reached more cheaply through a neighbour within the rewire radius. */
+void expectRewired(const AepPlanner& planner, const mapping::ExplorationMap& map) {
+    const Tree& tree = planner.tree();
+    const AepParams& p = planner.params();
+    int improvable = 0;
+    for (int i = 1; i < tree.size(); ++i)
+        for (int j = 1; j < tree.size(); ++j) {
+            const double d = (tree.node(i).position - tree.node(j).position).norm();
+            if (i != j && d <= p.rewireRadius && tree.node(j).cost + d < tree.node(i).cost - 1e-6 &&
+                map.isSegmentFree(tree.node(j).position, tree.node(i).position, p.robotRadius))
+                ++improvable;
+        }
+    // Rewiring is local to each insertion, so a few late improvements may remain.
+    EXPECT_LE(improvable, tree.size() / 10) << improvable << " of " << tree.size();
+}
+
+TEST(AepPlanner, LocalPlanHeadsForTheUnknownWithAConsistentRrtStar) {
+    auto map = westKnown(8.0, 4.0);
+    for (std::uint64_t seed : {1, 2, 3}) {
+        AepPlanner planner = makePlanner(seed);
+        const PlanningContext ctx = contextFor(*map, {2.0, 2.0, 1.0});
+        const Plan plan = planner.plan(ctx);
+        ASSERT_EQ(plan.status, Plan::Status::Path) << plan.reason;
+        ASSERT_EQ(plan.waypoints.size(), 1u) << plan.reason;
+        EXPECT_FALSE(planner.stats().global);
+        EXPECT_GT(plan.score, planner.params().zeroGain);
+        const Waypoint& w = plan.waypoints.front();
+        // RRT* may pick any parent within the rewire radius, so edges reach up to it.
+        EXPECT_LE((w.pose.position - ctx.pose.position).norm(),
+                  planner.params().rewireRadius + 1e-9);
+        EXPECT_NEAR(w.arrivalTime, ctx.time + ctx.motion.travelTime(ctx.pose, w.pose), 1e-12);
+        const Tree& tree = planner.tree();
+        EXPECT_GE(tree.size() - 1, planner.params().initialIterations);
+        EXPECT_LE(tree.size() - 1, planner.params().cutoffIterations);
+        EXPECT_GT(tree.node(tree.bestByScore()).position.x(), 2.0);
+        expectConsistentTree(planner, *map, true);
+    }
+}
+
+TEST(AepPlanner, BestBranchIsReusedInTheNextTree) {
+    auto map = westKnown(8.0, 4.0);
+    AepPlanner planner = makePlanner(5);
+    const Plan first = planner.plan(contextFor(*map, {1.5, 2.0, 1.0}));
+    const std::vector<int> branch = planner.tree().branch(planner.tree().bestByScore());
+    ASSERT_GE(branch.size(), 2u) << first.reason;
+    const Eigen::Vector3d second = planner.tree().node(branch[1]).position;
+    const Waypoint w = first.waypoints.front();
+    planner.plan(contextFor(*map, w.pose.position, w.pose.yaw));
+    EXPECT_TRUE((planner.tree().node(1).position - second).norm() < 1e-12);
+}
+
+TEST(AepPlanner, GlobalPlanFliesToTheCheapestFrontier) {
+    // 24 m long room, known up to x = 12; the drone sits at the far west end where no local
+    // branch sees anything. Two frontiers from earlier planning: near (9.5, 3) and far (11, 1).
+    auto map = westKnown(24.0, 12.0);
+    AepPlanner planner = makePlanner(6);
+    const Eigen::Vector3d nearF(9.5, 3.0, 1.0), farF(11.0, 1.0, 1.0);
+    planner.evaluateGain(*map, farF);
+    planner.evaluateGain(*map, nearF);
+    ASSERT_EQ(planner.cache().size(), 2u);
+    const PlanningContext ctx = contextFor(*map, {1.0, 2.0, 1.0}, M_PI);
+    const Plan plan = planner.plan(ctx);
+    ASSERT_EQ(plan.status, Plan::Status::Path) << plan.reason;
+    EXPECT_TRUE(planner.stats().global);
+    ASSERT_GE(plan.waypoints.size(), 2u);
+    EXPECT_GE(planner.tree().size() - 1, planner.params().globalMinNodes);
+    const Waypoint& last = plan.waypoints.back();
+    EXPECT_LT((last.pose.position - nearF).norm(), planner.params().goalRadius) << plan.reason;
+    EXPECT_GT(std::cos(last.pose.yaw), 0.9);  // the frontier's best yaw: east
+    // Arrival times follow the motion model; every segment is in known free space.
+    FlatPose at = ctx.pose;
+    double t = ctx.time;
+    for (const Waypoint& w : plan.waypoints) {
+        t += ctx.motion.travelTime(at, w.pose);
+        EXPECT_NEAR(w.arrivalTime, t, 1e-9);
+        EXPECT_TRUE(map->isSegmentFree(at.position, w.pose.position, planner.params().robotRadius));
+        at = w.pose;
+    }
+    expectConsistentTree(planner, *map, false);
+    expectRewired(planner, *map);
+}
+
+TEST(AepPlanner, FinishedWhenNoFrontierIsLeft) {
+    auto map = westKnown(8.0, 8.5);
+    AepPlanner planner = makePlanner(7);
+    const Plan plan = planner.plan(contextFor(*map, {2.0, 2.0, 1.0}));
+    EXPECT_EQ(plan.status, Plan::Status::Finished) << plan.reason;
+    EXPECT_EQ(planner.cache().size(), 0u);
+}
+
+TEST(AepPlanner, KeepFlyingStopsWhenThePathGetsBlocked) {
+    auto map = westKnown(24.0, 12.0);
+    AepPlanner planner = makePlanner(8);
+    Plan plan;
+    plan.status = Plan::Status::Path;
+    plan.waypoints.push_back({{{4.0, 2.0, 1.0}, 0.0}, 0.0});
+    plan.waypoints.push_back({{{8.0, 2.0, 1.0}, 0.0}, 0.0});
+    const PlanningContext ctx = contextFor(*map, {2.0, 2.0, 1.0});
+    EXPECT_TRUE(planner.keepFlying(ctx, plan, 0));
+    map->insertPointCloud({5.0, 2.0, 1.0}, {Eigen::Vector3f(6.0f, 2.0f, 1.0f)});
+    EXPECT_FALSE(planner.keepFlying(ctx, plan, 0));
+    EXPECT_TRUE(planner.keepFlying(ctx, plan, 1));
+}
+
+TEST(AepPlanner, SameSeedSamePlans) {
+    auto map = westKnown(8.0, 4.0);
+    AepPlanner a = makePlanner(9), b = makePlanner(9);
+    for (int i = 0; i < 3; ++i) {
+        const Plan pa = a.plan(contextFor(*map, {2.0, 2.0, 1.0}));
+        const Plan pb = b.plan(contextFor(*map, {2.0, 2.0, 1.0}));
+        ASSERT_EQ(pa.waypoints.size(), pb.waypoints.size());
+        EXPECT_EQ(pa.waypoints.front().pose.position, pb.waypoints.front().pose.position);
+    }
+}
+
+TEST(CreatePlanner, KnowsAepAndNamesItsMissingKeys) {
+    const std::string text = test::defaultsText();
+    const auto cfg = test::configFromText(text);
+    EXPECT_EQ(createPlanner("aep", *cfg, 1)->name(), "aep");
+    for (const std::string key :
+         {"lambda", "zero_gain", "sigma_thresh", "cache_node_threshold", "global_min_nodes",
+          "goal_radius", "global_planner_counter", "max_sampling_radius", "rewire_radius"}) {
+        const auto missing = test::configFromText(test::editKey(text, "aep", key));
+        try {
+            createPlanner("aep", *missing, 1);
+            FAIL() << key << " missing but accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("[aep] " + key), std::string::npos) << e.what();
+        }
+    }
+    const std::string bad = "2";
+    EXPECT_THROW(
+        createPlanner(
+            "aep", *test::configFromText(test::editKey(text, "aep", "global_goal_bias", &bad)), 1),
+        InputError);
+}
+
+}  // namespace
+}  // namespace daep::planning
