@@ -1,5 +1,7 @@
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <Eigen/Core>
@@ -15,6 +17,7 @@
 
 #include "daep/common/Types.h"
 #include "daep/mapping/ExplorationMap.h"
+#include "daep/planning/Planner.h"
 
 namespace daep::planning::test {
 
@@ -80,7 +83,8 @@ inline std::string defaultsText() {
         if (e.path().extension() == ".ini" && e.path().filename() != "defaults.ini")
             planners.push_back(e.path().string());
     std::sort(planners.begin(), planners.end());
-    for (const auto& p : planners) text += "\n" + readFile(p);
+    for (const auto& p : planners)
+        text += "\n" + readFile(p);
     return text;
 }
 
@@ -106,5 +110,28 @@ inline std::string editKey(const std::string& text, const std::string& section,
 inline std::unique_ptr<mrpt::config::CConfigFileMemory> configFromText(const std::string& text) {
     return std::make_unique<mrpt::config::CConfigFileMemory>(text);
 }
+
+/** A planning context at `position` over `map` (time and motion limits at their defaults). */
+inline PlanningContext contextFor(const mapping::ExplorationMap& map,
+                                  const Eigen::Vector3d& position, double yaw = 0.0) {
+    PlanningContext c;
+    c.time = 12.0;
+    c.pose.position = position;
+    c.pose.yaw = yaw;
+    c.map = &map;
+    c.explorationBox = map.explorationBox();
+    return c;
+}
+
+/** An 8 x 4 x 2 m box whose western half (x < ~4.5) is seen from (2, 2, 1). */
+struct HalfKnownRoomMap : ::testing::Test {
+    void SetUp() override {
+        map = makeMap(box(0, 0, 0, 8, 4, 2), 2.5);
+        const Aabb walls = box(-0.1, -0.1, -0.1, 8.1, 4.1, 2.1);
+        map->insertPointCloud(root, roomScan(walls, root, 0.5));
+    }
+    const Eigen::Vector3d root{2.0, 2.0, 1.0};
+    std::unique_ptr<mapping::ExplorationMap> map;
+};
 
 }  // namespace daep::planning::test

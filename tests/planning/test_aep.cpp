@@ -12,21 +12,11 @@ namespace daep::planning {
 namespace {
 
 using test::box;
+using test::contextFor;
 
 AepPlanner makePlanner(std::uint64_t seed) {
     const auto cfg = test::configFromText(test::defaultsText());
     return AepPlanner(AepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), seed);
-}
-
-PlanningContext contextFor(const mapping::ExplorationMap& map, const Eigen::Vector3d& position,
-                           double yaw = 0.0) {
-    PlanningContext c;
-    c.time = 5.0;
-    c.pose.position = position;
-    c.pose.yaw = yaw;
-    c.map = &map;
-    c.explorationBox = map.explorationBox();
-    return c;
 }
 
 /** Points in every direction from `origin`, `distance` away (beyond the mapping range). */

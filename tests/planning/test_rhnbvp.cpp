@@ -14,33 +14,14 @@ namespace daep::planning {
 namespace {
 
 using test::box;
+using test::contextFor;
 
 RhNbvpPlanner makePlanner(std::uint64_t seed) {
     const auto cfg = test::configFromText(test::defaultsText());
     return RhNbvpPlanner(RhNbvpParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), seed);
 }
 
-PlanningContext contextFor(const mapping::ExplorationMap& map, const Eigen::Vector3d& position,
-                           double yaw = 0.0) {
-    PlanningContext c;
-    c.time = 12.0;
-    c.pose.position = position;
-    c.pose.yaw = yaw;
-    c.map = &map;
-    c.explorationBox = map.explorationBox();
-    return c;
-}
-
-/** An 8 x 4 x 2 m box whose western half (x < ~4.5) is seen from (2, 2, 1). */
-struct HalfKnownRoom : ::testing::Test {
-    void SetUp() override {
-        map = test::makeMap(box(0, 0, 0, 8, 4, 2), 2.5);
-        const Aabb walls = box(-0.1, -0.1, -0.1, 8.1, 4.1, 2.1);
-        map->insertPointCloud(root, test::roomScan(walls, root, 0.5));
-    }
-    const Eigen::Vector3d root{2.0, 2.0, 1.0};
-    std::unique_ptr<mapping::ExplorationMap> map;
-};
+class HalfKnownRoom : public test::HalfKnownRoomMap {};
 
 TEST_F(HalfKnownRoom, TreeNodesAndEdgesAreValid) {
     RhNbvpPlanner planner = makePlanner(7);

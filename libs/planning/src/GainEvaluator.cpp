@@ -5,32 +5,15 @@
 #include <limits>
 
 #include "ConfigChecks.h"
+#include "RayGeometry.h"
 #include "daep/common/Config.h"
 #include "daep/common/Types.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::planning {
-namespace {
-
-constexpr double kTwoPi = 2.0 * M_PI;
-
-int tileCount(double extent, double step) {
-    return std::max(1, static_cast<int>(std::lround(extent / step)));
-}
-
-/** Distance along the unit ray from p (inside the box) to the box boundary. */
-double exitDistance(const Aabb& box, const Eigen::Vector3d& p, const Eigen::Vector3d& dir) {
-    double t = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (dir[a] > 0.0)
-            t = std::min(t, (box.max[a] - p[a]) / dir[a]);
-        if (dir[a] < 0.0)
-            t = std::min(t, (box.min[a] - p[a]) / dir[a]);
-    }
-    return t;
-}
-
-}  // namespace
+using detail::exitDistance;
+using detail::kTwoPi;
+using detail::tileCount;
 
 GainParams GainParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     const ConfigReader r(config, "gain");

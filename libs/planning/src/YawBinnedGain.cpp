@@ -5,30 +5,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "RayGeometry.h"
 #include "daep/common/Types.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::planning {
-namespace {
-
-constexpr double kTwoPi = 2.0 * M_PI;
-
-int tileCount(double extent, double step) {
-    return std::max(1, static_cast<int>(std::lround(extent / step)));
-}
-
-double exitDistance(const Aabb& box, const Eigen::Vector3d& p, const Eigen::Vector3d& dir) {
-    double t = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (dir[a] > 0.0)
-            t = std::min(t, (box.max[a] - p[a]) / dir[a]);
-        if (dir[a] < 0.0)
-            t = std::min(t, (box.min[a] - p[a]) / dir[a]);
-    }
-    return t;
-}
-
-}  // namespace
+using detail::exitDistance;
+using detail::kTwoPi;
+using detail::tileCount;
 
 YawBinnedGain::YawBinnedGain(const GainParams& params, int bins, const CellWeights& weights)
     : params_(params), weights_(weights), bins_(bins) {
