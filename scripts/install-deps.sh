@@ -8,6 +8,7 @@ packages=(
   liboctomap-dev libeigen3-dev libopencv-dev
   libembree-dev libassimp-dev libnanoflann-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libegl1 libegl-mesa0 libgl1-mesa-dri libopengl0
 )
 
 missing=()

@@ -13,6 +13,9 @@
 
 #include "ComponentParams.h"
 #include "MissionSetup.h"
+#include "Outputs.h"
+#include "RawlogRecorder.h"
+#include "SceneExport.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/eval/Statistics.h"
@@ -64,9 +67,14 @@ struct Mission::Impl {
                                           settings.seed * 0x9E3779B97F4A7C15ull + 1)),
           noiseRng(settings.seed),
           log(logStream),
-          recorder(outputDir) {
+          recorder(outputDir),
+          outputs(loadOutputParams(config.config())),
+          scene(outputs, outputDir, logStream) {
         checkStartIsFree();
         framePeriod = 1.0 / camera.params().rateHz;
+        if (outputs.rawlog)
+            rawlog = std::make_unique<RawlogRecorder>(recorder.path("run.rawlog"));
+        nextScene = outputs.sceneEvery;
     }
 
     /** The drone rests on the start point: its box's bottom face is at the start's z. */
@@ -109,6 +117,25 @@ struct Mission::Impl {
         camera.render(caster, drone.pose(), t, noiseRng, frame);
         map.insertObservation(frame, drone.pose());
         recorder.addPose(t, drone.pose());
+        if (rawlog)
+            rawlog->addFrame(frame, t, drone.pose(), people.states(), people.params().bodySize);
+        if (trajectory.empty() || (trajectory.back() - drone.pose().position).norm() > 0.05)
+            trajectory.push_back(drone.pose().position);
+        if (outputs.scene && outputs.sceneEvery > 0 && t + kEps >= nextScene) {
+            writeScene();
+            nextScene += outputs.sceneEvery;
+        }
+    }
+
+    void writeScene() {
+        SceneContent c;
+        c.map = &map;
+        c.trajectory = &trajectory;
+        c.tree = &lastTree;
+        c.people = people.states();
+        c.bodySize = people.params().bodySize;
+        c.drone = drone.pose();
+        scene.write(c);
     }
 
     void recordDueSamples() {
@@ -211,6 +238,8 @@ struct Mission::Impl {
         const auto t0 = Clock::now();
         planning::Plan plan = planner->plan(ctx);
         const double wall = secondsSince(t0);
+        if (!plan.tree.empty())
+            lastTree = plan.tree;
         const double charged = settings.planningTime == "fixed" ? settings.planningFixed : wall;
         ++iterations;
         planningCharged += charged;
@@ -296,6 +325,12 @@ struct Mission::Impl {
     std::ostream* log;
     eval::RunRecorder recorder;
     mrpt::obs::CObservation3DRangeScan frame;
+    OutputParams outputs;
+    SceneExporter scene;
+    std::unique_ptr<RawlogRecorder> rawlog;
+    std::vector<Eigen::Vector3d> trajectory;  ///< flown path, for the scene
+    std::vector<planning::TreeEdge> lastTree;
+    double nextScene = 0.0;
     const std::atomic<bool>* stopFlag = nullptr;
 
     double t = 0.0;
@@ -343,6 +378,10 @@ eval::RunSummary Mission::run() {
     m.recorder.writeCollisions();
     if (!m.map.writeBinary(m.recorder.path("map.bt")))
         throw std::runtime_error("cannot write " + m.recorder.path("map.bt"));
+    if (m.rawlog)
+        m.rawlog->close();
+    if (m.outputs.scene)
+        m.writeScene();
     if (failure)
         std::rethrow_exception(failure);
     return summary;

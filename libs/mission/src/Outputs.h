@@ -1,0 +1,21 @@
+#pragma once
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace daep::mission {
+
+/** The [output] section: optional outputs of a run besides the CSV/JSON records. */
+struct OutputParams {
+    bool rawlog = false;      ///< DIR/run.rawlog (MRPT observations format)
+    bool scene = true;        ///< DIR/scene.3Dscene at the end of the run
+    double sceneEvery = 0.0;  ///< also every this many simulated seconds; 0 = only at the end
+    bool renderPng = true;    ///< DIR/scene_perspective.png and DIR/scene_top.png
+    int pngWidth = 1280;
+    int pngHeight = 960;
+};
+
+OutputParams loadOutputParams(const mrpt::config::CConfigFileBase& cfg);
+
+}  // namespace daep::mission
