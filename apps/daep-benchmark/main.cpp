@@ -1,0 +1,173 @@
+// daep-benchmark: runs planners x worlds x modes x starts x repetitions as daep-explore
+// processes, resumably, and aggregates them into results.csv, table.md and plots.
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "daep/common/Error.h"
+#include "daep/eval/BenchmarkResults.h"
+#include "daep/eval/BenchmarkRunner.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kUsage =
+    "usage: daep-benchmark CONFIG.ini [--jobs N] [--out DIR] [--set section.key=value ...]\n"
+    "                      [--retry-failed] [--explore PATH] [--emit-jobs FILE]\n"
+    "       daep-benchmark --aggregate DIR\n"
+    "Runs every planner x world x mode x start x repetition of CONFIG.ini as a daep-explore\n"
+    "process (N at a time, default: number of CPUs) into DIR/runs/<run>/, skipping runs done\n"
+    "before, then writes DIR/results.csv, DIR/table.md and DIR/plots/*.png.\n"
+    "  --set benchmark.key=v   override a [benchmark] key; other section.key=v go to every run\n"
+    "  --retry-failed          run failed runs again (by default they are kept as failed)\n"
+    "  --explore PATH          the daep-explore binary (default: next to this one)\n"
+    "  --emit-jobs FILE        write one shell command per pending run and exit (for GNU\n"
+    "                          parallel or a Slurm array); aggregate later with --aggregate\n"
+    "  --aggregate DIR         rebuild results.csv, table.md and plots from DIR/runs/*\n"
+    "Exit: 0 all runs ok, 1 bad input, 2 a run failed or an error, 130 interrupted.\n";
+
+struct Options {
+    std::string config, out, explore, emitJobs, aggregate;
+    std::vector<std::string> sets;
+    int jobs = 0;
+    bool retryFailed = false;
+    bool help = false;
+};
+
+std::string value(int argc, char** argv, int& i) {
+    if (i + 1 >= argc)
+        throw daep::InputError(std::string(argv[i]) + " needs a value");
+    return argv[++i];
+}
+
+int parseJobs(const std::string& text) {
+    std::size_t used = 0;
+    int jobs = 0;
+    try {
+        jobs = std::stoi(text, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != text.size() || jobs < 1)
+        throw daep::InputError("--jobs: '" + text + "' is not a positive integer");
+    return jobs;
+}
+
+Options parseArguments(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--jobs" || arg == "-j")
+            o.jobs = parseJobs(value(argc, argv, i));
+        else if (arg == "--out")
+            o.out = value(argc, argv, i);
+        else if (arg == "--set")
+            o.sets.push_back(value(argc, argv, i));
+        else if (arg == "--explore")
+            o.explore = value(argc, argv, i);
+        else if (arg == "--emit-jobs")
+            o.emitJobs = value(argc, argv, i);
+        else if (arg == "--aggregate")
+            o.aggregate = value(argc, argv, i);
+        else if (arg == "--help" || arg == "-h")
+            o.help = true;
+        else if (arg == "--retry-failed")
+            o.retryFailed = true;
+        else if (!arg.empty() && arg[0] == '-')
+            throw daep::InputError("unknown option " + arg + "\n" + kUsage);
+        else if (o.config.empty())
+            o.config = arg;
+        else
+            throw daep::InputError("unexpected argument " + arg + "\n" + kUsage);
+    }
+    if (o.help)
+        return o;
+    if (o.aggregate.empty() && o.config.empty())
+        throw daep::InputError(std::string("no benchmark config given\n") + kUsage);
+    if (!o.aggregate.empty() && !o.config.empty())
+        throw daep::InputError("--aggregate DIR takes no config");
+    return o;
+}
+
+/** daep-explore of the same build tree (apps/daep-explore/) or installed alongside. */
+std::string findExplore() {
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (ec)
+        throw daep::InputError("cannot locate daep-explore; pass --explore PATH");
+    for (const auto& candidate :
+         {self.parent_path().parent_path() / "daep-explore" / "daep-explore",
+          self.parent_path() / "daep-explore"})
+        if (fs::exists(candidate))
+            return candidate.string();
+    throw daep::InputError("no daep-explore next to " + self.string() + "; pass --explore PATH");
+}
+
+int aggregate(const std::string& dir, const std::vector<std::string>& planners) {
+    const auto runs = daep::eval::aggregateBenchmark(dir, planners);
+    std::cout << "aggregated " << runs << " runs: " << (fs::path(dir) / "results.csv").string()
+              << ", " << (fs::path(dir) / "table.md").string() << ", "
+              << (fs::path(dir) / "plots").string() << "/\n";
+    return 0;
+}
+
+int benchmark(const Options& o) {
+    const auto config = daep::eval::loadBenchmarkConfig(o.config, o.sets);
+    daep::eval::RunnerOptions ro;
+    ro.outDirectory = o.out.empty() ? "benchmark-" + fs::path(o.config).stem().string() : o.out;
+    ro.exploreBinary = o.explore.empty() ? findExplore() : o.explore;
+    if (!fs::exists(ro.exploreBinary))
+        throw daep::InputError("--explore: no such file " + ro.exploreBinary);
+    const unsigned cpus = std::thread::hardware_concurrency();
+    ro.jobs = o.jobs > 0 ? o.jobs : static_cast<int>(cpus ? cpus : 1);
+    ro.retryFailed = o.retryFailed;
+    ro.interactive = ::isatty(STDOUT_FILENO) != 0;
+    fs::create_directories(ro.outDirectory);
+    daep::eval::BenchmarkRunner runner(config, ro);
+
+    if (!o.emitJobs.empty()) {
+        const auto n = runner.emitJobs(o.emitJobs);
+        std::cout << "wrote " << n << " commands to " << o.emitJobs << "; after running them: "
+                  << "daep-benchmark --aggregate " << ro.outDirectory << "\n";
+        return 0;
+    }
+    std::cout << config.expand().size() << " runs (" << config.planners.size() << " planners x "
+              << config.worlds.size() << " worlds x " << config.modes.size() << " modes x "
+              << config.starts.size() << " starts x " << config.repetitions << " repetitions), "
+              << ro.jobs << " at a time, into " << ro.outDirectory << "\n";
+    const auto report = runner.run(std::cout);
+    aggregate(ro.outDirectory, config.planners);
+    if (report.interrupted) {
+        std::cout << "interrupted; run the same command again to resume\n";
+        return 130;
+    }
+    std::cout << report.succeeded << " runs ok, " << report.failed << " failed, " << report.skipped
+              << " skipped (done before";
+    if (report.failedBefore > 0)
+        std::cout << "; " << report.failedBefore << " of them failed, see results.csv";
+    std::cout << ")\n";
+    return report.failed + report.failedBefore > 0 ? 2 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        const Options o = parseArguments(argc, argv);
+        if (o.help) {
+            std::cout << kUsage;
+            return 0;
+        }
+        return o.aggregate.empty() ? benchmark(o) : aggregate(o.aggregate, {});
+    } catch (const daep::InputError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    }
+}

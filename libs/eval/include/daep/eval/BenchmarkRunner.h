@@ -1,0 +1,62 @@
+#pragma once
+
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "daep/eval/BenchmarkConfig.h"
+
+namespace daep::eval {
+
+struct RunnerOptions {
+    std::string outDirectory;   ///< OUT; runs go to OUT/runs/<id>
+    std::string exploreBinary;  ///< daep-explore
+    int jobs = 1;
+    bool retryFailed = false;
+    /** Progress bar updated in place (a TTY) or one line per finished run. */
+    bool interactive = false;
+};
+
+/** What a benchmark invocation did. */
+struct RunnerReport {
+    std::size_t total = 0;
+    std::size_t skipped = 0;  ///< already done (or failed, without --retry-failed)
+    std::size_t succeeded = 0;
+    std::size_t failed = 0;
+    std::size_t failedBefore = 0;  ///< failed in an earlier invocation, not retried
+    bool interrupted = false;
+};
+
+/**
+ * Runs the matrix as separate daep-explore processes, `jobs` at a time. A run whose summary.json
+ * exists and whose exit code was 0 is skipped, a failed one re-run only with retryFailed. SIGINT
+ * stops launching and forwards the interrupt to the running missions (a second one kills them);
+ * interrupted runs stay pending for the next invocation.
+ */
+class BenchmarkRunner {
+public:
+    BenchmarkRunner(BenchmarkConfig config, RunnerOptions options);
+
+    /** The daep-explore arguments (without the binary) of one run. */
+    std::vector<std::string> arguments(const RunSpec& run) const;
+    std::string runDirectory(const RunSpec& run) const;
+    /** Runs still to do, by the resume rule. */
+    std::vector<RunSpec> pendingRuns() const;
+
+    RunnerReport run(std::ostream& progress);
+
+    /** One shell line per pending run (for GNU parallel or a Slurm array); returns the count. */
+    std::size_t emitJobs(const std::string& path) const;
+
+private:
+    bool isDone(const RunSpec& run) const;
+
+    BenchmarkConfig config_;
+    RunnerOptions options_;
+};
+
+/** Quotes a word for POSIX sh (single quotes, unless it is plainly safe). */
+std::string shellQuote(const std::string& word);
+
+}  // namespace daep::eval

@@ -1,0 +1,270 @@
+#include "daep/eval/BenchmarkConfig.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "daep/common/Error.h"
+
+namespace fs = std::filesystem;
+
+namespace daep::eval {
+
+namespace {
+
+const std::vector<std::string> kBenchmarkKeys = {"planners",    "worlds", "modes",     "starts",
+                                                 "repetitions", "seed",   "experiment"};
+/** Set per run by the matrix, so [set] must not name them. */
+const std::set<std::string> kMatrixKeys = {"experiment.world", "experiment.mode",
+                                           "experiment.planner", "experiment.start",
+                                           "experiment.seed"};
+
+std::string trim(const std::string& s) {
+    const auto b = s.find_first_not_of(" \t\r\n");
+    if (b == std::string::npos)
+        return "";
+    return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> items;
+    std::string item;
+    for (char c : text + ",") {
+        if (c != ',') {
+            item += c;
+            continue;
+        }
+        if (!trim(item).empty())
+            items.push_back(trim(item));
+        item.clear();
+    }
+    return items;
+}
+
+int parseInt(const std::string& text, const std::string& what) {
+    std::size_t used = 0;
+    int value = 0;
+    try {
+        value = std::stoi(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size())
+        throw InputError(what + ": '" + text + "' is not an integer");
+    return value;
+}
+
+/** A value together with where it came from, for error messages. */
+struct Entry {
+    std::string value;
+    std::string where;  ///< "file:line" or "--set benchmark.key"
+};
+
+class Parser {
+public:
+    explicit Parser(std::string path) : path_(std::move(path)) {}
+
+    void read() {
+        std::ifstream in(path_);
+        if (!in)
+            throw InputError(path_ + ": cannot open benchmark config");
+        std::string line, section;
+        for (int number = 1; std::getline(in, line); ++number)
+            readLine(trim(line), number, section);
+    }
+
+    void override(const std::string& assignment) {
+        const auto eq = assignment.find('=');
+        const auto dot = assignment.find('.');
+        if (eq == std::string::npos || dot == std::string::npos || dot > eq)
+            throw InputError("--set " + assignment + ": expected section.key=value");
+        const std::string key = trim(assignment.substr(0, eq));
+        const std::string value = trim(assignment.substr(eq + 1));
+        const std::string where = "--set " + key;
+        if (key.compare(0, dot + 1, "benchmark.") == 0)
+            setBenchmark(key.substr(dot + 1), value, where, true);
+        else
+            addSet(key, value, where);
+    }
+
+    BenchmarkConfig build() const {
+        BenchmarkConfig cfg;
+        cfg.source = path_;
+        cfg.planners = list("planners");
+        cfg.worlds = list("worlds");
+        cfg.modes = list("modes");
+        for (const auto& m : cfg.modes)
+            if (m != "static" && m != "dynamic")
+                fail("modes", "mode '" + m + "' is not static or dynamic");
+        try {
+            cfg.starts = parseIntList(require("starts").value);
+        } catch (const InputError& e) {
+            fail("starts", e.what());
+        }
+        cfg.repetitions = integer("repetitions");
+        if (cfg.repetitions < 1)
+            fail("repetitions", "must be at least 1");
+        cfg.seed = integer("seed");
+        cfg.experiment = experimentPath();
+        cfg.sets = sets_;
+        return cfg;
+    }
+
+private:
+    void readLine(const std::string& line, int number, std::string& section) {
+        const std::string where = path_ + ":" + std::to_string(number);
+        if (line.empty() || line[0] == '#' || line[0] == ';')
+            return;
+        if (line.front() == '[') {
+            if (line.back() != ']')
+                throw InputError(where + ": malformed section header '" + line + "'");
+            section = trim(line.substr(1, line.size() - 2));
+            if (section != "benchmark" && section != "set")
+                throw InputError(where + ": unknown section [" + section +
+                                 "] (expected [benchmark] or [set])");
+            return;
+        }
+        const auto eq = line.find('=');
+        if (eq == std::string::npos)
+            throw InputError(where + ": expected 'key = value', got '" + line + "'");
+        if (section.empty())
+            throw InputError(where + ": key outside a section");
+        const std::string key = trim(line.substr(0, eq));
+        const std::string value = trim(line.substr(eq + 1));
+        if (section == "benchmark")
+            setBenchmark(key, value, where, false);
+        else
+            addSet(key, value, where);
+    }
+
+    void setBenchmark(const std::string& key, const std::string& value, const std::string& where,
+                      bool replace) {
+        if (std::find(kBenchmarkKeys.begin(), kBenchmarkKeys.end(), key) == kBenchmarkKeys.end())
+            throw InputError(where + ": unknown key [benchmark] " + key);
+        if (!replace && values_.count(key))
+            throw InputError(where + ": duplicate key [benchmark] " + key + " (first at " +
+                             values_.at(key).where + ")");
+        values_[key] = {value, where};
+    }
+
+    void addSet(const std::string& key, const std::string& value, const std::string& where) {
+        const auto dot = key.find('.');
+        if (dot == std::string::npos || dot == 0 || dot + 1 == key.size())
+            throw InputError(where + ": [set] key '" + key + "' is not section.key");
+        if (kMatrixKeys.count(key))
+            throw InputError(where + ": " + key + " is set per run; use [benchmark] instead");
+        for (auto& [k, v] : sets_)
+            if (k == key) {
+                v = value;
+                return;
+            }
+        sets_.emplace_back(key, value);
+    }
+
+    const Entry& require(const std::string& key) const {
+        const auto it = values_.find(key);
+        if (it == values_.end())
+            throw InputError(path_ + ": missing required key [benchmark] " + key);
+        return it->second;
+    }
+
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+        throw InputError(require(key).where + ": [benchmark] " + key + ": " + what);
+    }
+
+    std::vector<std::string> list(const std::string& key) const {
+        auto items = splitList(require(key).value);
+        if (items.empty())
+            fail(key, "empty list");
+        for (const auto& item : items)
+            if (std::count(items.begin(), items.end(), item) > 1)
+                fail(key, "'" + item + "' listed twice");
+        return items;
+    }
+
+    int integer(const std::string& key) const {
+        const Entry& entry = require(key);
+        try {
+            return parseInt(entry.value, "value");
+        } catch (const InputError& e) {
+            fail(key, e.what());
+        }
+    }
+
+    std::string experimentPath() const {
+        const fs::path given = require("experiment").value;
+        if (given.empty())
+            fail("experiment", "empty path");
+        fs::path full = given.is_absolute() ? given : fs::path(path_).parent_path() / given;
+        std::error_code ec;
+        full = fs::weakly_canonical(fs::absolute(full), ec);
+        if (ec || !fs::is_regular_file(full))
+            fail("experiment", "no such file '" + full.string() + "'");
+        return full.string();
+    }
+
+    std::string path_;
+    std::map<std::string, Entry> values_;
+    std::vector<std::pair<std::string, std::string>> sets_;
+};
+
+std::string safeName(const std::string& s) {
+    std::string out = s;
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.')
+            c = '-';
+    return out;
+}
+
+}  // namespace
+
+std::string RunSpec::id() const {
+    return safeName(world) + "_" + safeName(mode) + "_" + safeName(planner) + "_s" +
+           std::to_string(start) + "_r" + std::to_string(repetition);
+}
+
+std::vector<RunSpec> BenchmarkConfig::expand() const {
+    std::vector<RunSpec> runs;
+    for (const auto& world : worlds)
+        for (const auto& mode : modes)
+            for (const auto& planner : planners)
+                for (int start : starts)
+                    for (int rep = 0; rep < repetitions; ++rep)
+                        runs.push_back({world, mode, planner, start, rep, seed + rep});
+    return runs;
+}
+
+std::vector<int> parseIntList(const std::string& text) {
+    std::vector<int> values;
+    const auto items = splitList(text);
+    if (items.empty())
+        throw InputError("empty list");
+    for (const auto& item : items) {
+        const auto dash = item.find('-', 1);
+        const int lo = parseInt(trim(item.substr(0, dash)), "range");
+        const int hi =
+            dash == std::string::npos ? lo : parseInt(trim(item.substr(dash + 1)), "range");
+        if (lo < 0 || hi < lo)
+            throw InputError("bad range '" + item + "'");
+        for (int v = lo; v <= hi; ++v) {
+            if (std::find(values.begin(), values.end(), v) != values.end())
+                throw InputError(std::to_string(v) + " listed twice");
+            values.push_back(v);
+        }
+    }
+    return values;
+}
+
+BenchmarkConfig loadBenchmarkConfig(const std::string& path,
+                                    const std::vector<std::string>& overrides) {
+    Parser parser(path);
+    parser.read();
+    for (const auto& o : overrides)
+        parser.override(o);
+    return parser.build();
+}
+
+}  // namespace daep::eval

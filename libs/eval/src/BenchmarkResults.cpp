@@ -1,0 +1,491 @@
+#include "daep/eval/BenchmarkResults.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "daep/eval/Plot.h"
+#include "daep/eval/RunRecorder.h"
+#include "daep/eval/Statistics.h"
+
+namespace fs = std::filesystem;
+
+namespace daep::eval {
+
+namespace {
+
+const std::set<std::string> kLabelKeys = {"world", "mode", "planner", "start", "seed"};
+const std::vector<std::string> kMetricOrder = {
+    "coverage_percent", "exploration_time_s", "path_length_m",
+    "planning_time_s",  "plan_ms_median",     "plan_ms_p95",
+    "collisions",       "static_collisions",  "iterations",
+    "aborted_paths",    "finished",           "end_reason",
+    "known_volume_m3",  "box_volume_m3",      "exploration_start_s",
+    "wall_time_s"};
+
+/** The table rows: label, summary key, whether higher is better. */
+struct RowDef {
+    const char* label;
+    const char* key;
+    bool higherIsBetter;
+};
+const RowDef kRows[] = {{"C %", "coverage_percent", true},
+                        {"T s", "exploration_time_s", false},
+                        {"PL m", "path_length_m", false},
+                        {"PT s", "planning_time_s", false},
+                        {"NOC", "collisions", false}};
+
+std::string readText(const fs::path& p) {
+    std::ifstream in(p);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+std::string csvField(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos)
+        return s;
+    std::string out = "\"";
+    for (char c : s)
+        out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
+std::string format2(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", v);
+    return buf;
+}
+
+double sampleStddev(const std::vector<double>& v) {
+    if (v.size() < 2)
+        return 0.0;
+    const double m = mean(v);
+    double sum = 0.0;
+    for (double x : v)
+        sum += (x - m) * (x - m);
+    return std::sqrt(sum / (v.size() - 1));
+}
+
+std::string displayName(const std::string& planner) {
+    if (planner == "rhnbvp")
+        return "RH-NBVP";
+    std::string out = planner;
+    for (char& c : out)
+        c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return out;
+}
+
+/** Parses one JSON string literal starting at text[i] == '"'; advances i past it. */
+std::string parseString(const std::string& text, std::size_t& i) {
+    std::string out;
+    for (++i; i < text.size() && text[i] != '"'; ++i) {
+        if (text[i] != '\\') {
+            out += text[i];
+            continue;
+        }
+        if (++i >= text.size())
+            break;
+        const char e = text[i];
+        out += e == 'n' ? '\n' : e == 't' ? '\t' : e == 'r' ? '\r' : e;
+    }
+    if (i >= text.size())
+        throw std::runtime_error("unterminated JSON string");
+    ++i;
+    return out;
+}
+
+struct Series {
+    std::vector<double> t, coverage;
+};
+
+Series readTimeseries(const fs::path& file) {
+    Series s;
+    std::ifstream in(file);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+        double t = 0, c = 0;
+        if (std::sscanf(line.c_str(), "%lf,%lf", &t, &c) == 2)
+            s.t.push_back(t), s.coverage.push_back(c);
+    }
+    return s;
+}
+
+std::vector<std::pair<double, double>> readCollisions(const fs::path& file) {
+    std::vector<std::pair<double, double>> spans;
+    std::ifstream in(file);
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+        int person = 0;
+        double a = 0, b = 0;
+        if (std::sscanf(line.c_str(), "%d,%lf,%lf", &person, &a, &b) == 3)
+            spans.emplace_back(a, b);
+    }
+    return spans;
+}
+
+/** Coverage at time t: the last sample at or before t (a finished run keeps its final value). */
+double coverageAt(const Series& s, double t) {
+    const auto it = std::upper_bound(s.t.begin(), s.t.end(), t);
+    if (it == s.t.begin())
+        return s.coverage.empty() ? 0.0 : s.coverage.front();
+    return s.coverage[static_cast<std::size_t>(it - s.t.begin()) - 1];
+}
+
+void writeCoveragePlot(const std::string& world, const std::string& mode,
+                       const std::vector<std::pair<std::string, std::vector<Series>>>& byPlanner,
+                       const std::vector<std::string>& allPlanners, const std::string& path) {
+    double end = 0.0;
+    for (const auto& [planner, runs] : byPlanner)
+        for (const auto& s : runs)
+            if (!s.t.empty())
+                end = std::max(end, s.t.back());
+    Plot plot(900, 520);
+    plot.setTitle("Coverage over time: " + world + " (" + mode + ")");
+    plot.setXLabel("time [s]");
+    plot.setYLabel("coverage [%]");
+    plot.setYRange(0.0, 100.0);
+    for (std::size_t p = 0; p < byPlanner.size(); ++p) {
+        const auto& runs = byPlanner[p].second;
+        std::vector<double> t, mu, lo, hi;
+        for (double x = 0.0; x <= end + 1e-9; x += 1.0) {
+            std::vector<double> v;
+            for (const auto& s : runs)
+                v.push_back(coverageAt(s, x));
+            t.push_back(x);
+            mu.push_back(mean(v));
+            lo.push_back(*std::min_element(v.begin(), v.end()));
+            hi.push_back(*std::max_element(v.begin(), v.end()));
+        }
+        // Colour by the planner's place among all planners, the same in every figure.
+        const auto index = std::find(allPlanners.begin(), allPlanners.end(), byPlanner[p].first);
+        const Rgb color = seriesColor(static_cast<std::size_t>(index - allPlanners.begin()));
+        plot.addBand(t, lo, hi, color, 0.22);
+        plot.addLine(
+            t, mu, color,
+            displayName(byPlanner[p].first) + " (" + std::to_string(runs.size()) + " runs)");
+    }
+    plot.save(path);
+}
+
+void writeCollisionPlot(const RunResult& run, const std::string& path) {
+    const Series s = readTimeseries(fs::path(run.directory) / "timeseries.csv");
+    const auto spans = readCollisions(fs::path(run.directory) / "collisions.csv");
+    Plot plot(900, 360);
+    plot.setTitle("Collisions: " + displayName(run.spec.planner) + ", " + run.spec.world + " (" +
+                  run.spec.mode + "), start " + std::to_string(run.spec.start) + ", rep " +
+                  std::to_string(run.spec.repetition) + ": " + std::to_string(spans.size()) +
+                  " collisions");
+    plot.setXLabel("time [s]");
+    plot.setYLabel("coverage [%]");
+    plot.setYRange(0.0, 100.0);
+    plot.addLine(s.t, s.coverage, seriesColor(0), "coverage");
+    plot.addIntervals(spans, {255, 140, 0}, "collision ongoing");
+    plot.save(path);
+}
+
+}  // namespace
+
+double RunResult::metric(const std::string& key, double fallback) const {
+    for (const auto& [k, v] : metrics)
+        if (k == key) {
+            if (v == "true")
+                return 1.0;
+            if (v == "false")
+                return 0.0;
+            char* end = nullptr;
+            const double d = std::strtod(v.c_str(), &end);
+            return end != v.c_str() ? d : fallback;
+        }
+    return fallback;
+}
+
+std::vector<std::pair<std::string, std::string>> parseFlatJson(const std::string& text) {
+    std::vector<std::pair<std::string, std::string>> out;
+    std::size_t i = text.find('{');
+    if (i == std::string::npos)
+        throw std::runtime_error("JSON: no object");
+    auto skip = [&] {
+        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i])))
+            ++i;
+    };
+    for (++i;;) {
+        skip();
+        if (i < text.size() && text[i] == '}')
+            return out;
+        if (i >= text.size() || text[i] != '"')
+            throw std::runtime_error("JSON: expected a key");
+        std::string key = parseString(text, i);
+        skip();
+        if (i >= text.size() || text[i++] != ':')
+            throw std::runtime_error("JSON: expected ':' after \"" + key + "\"");
+        skip();
+        std::string value;
+        if (i < text.size() && text[i] == '"') {
+            value = parseString(text, i);
+        } else {
+            const auto endPos = text.find_first_of(",}", i);
+            if (endPos == std::string::npos)
+                throw std::runtime_error("JSON: unterminated value of \"" + key + "\"");
+            value = text.substr(i, endPos - i);
+            value.erase(value.find_last_not_of(" \t\r\n") + 1);
+            i = endPos;
+        }
+        out.emplace_back(std::move(key), std::move(value));
+        skip();
+        if (i < text.size() && text[i] == ',')
+            ++i;
+    }
+}
+
+void writeRunSpec(const std::string& runDirectory, const RunSpec& spec) {
+    fs::create_directories(runDirectory);
+    std::ofstream out(fs::path(runDirectory) / kRunSpecFile);
+    out << "{\n  \"world\": " << jsonString(spec.world)
+        << ",\n  \"mode\": " << jsonString(spec.mode)
+        << ",\n  \"planner\": " << jsonString(spec.planner) << ",\n  \"start\": " << spec.start
+        << ",\n  \"repetition\": " << spec.repetition << ",\n  \"seed\": " << spec.seed << "\n}\n";
+    if (!out)
+        throw std::runtime_error("cannot write " +
+                                 (fs::path(runDirectory) / kRunSpecFile).string());
+}
+
+RunResult readRun(const std::string& runDirectory) {
+    const fs::path dir(runDirectory);
+    RunResult r;
+    r.directory = runDirectory;
+    r.log = (dir / kRunLogFile).string();
+    const auto specFile = dir / kRunSpecFile;
+    if (!fs::exists(specFile))
+        throw std::runtime_error("no " + specFile.string());
+    const auto spec = parseFlatJson(readText(specFile));
+    auto get = [&](const char* key) {
+        for (const auto& [k, v] : spec)
+            if (k == key)
+                return v;
+        throw std::runtime_error(specFile.string() + ": no \"" + std::string(key) + "\"");
+    };
+    r.spec = {get("world"),
+              get("mode"),
+              get("planner"),
+              std::stoi(get("start")),
+              std::stoi(get("repetition")),
+              std::stoi(get("seed"))};
+
+    const auto exitFile = dir / kExitCodeFile;
+    const bool hasExit = fs::exists(exitFile);
+    if (hasExit)
+        r.exitCode = std::atoi(readText(exitFile).c_str());
+    const auto summary = dir / "summary.json";
+    if (fs::exists(summary)) {
+        try {
+            for (auto& kv : parseFlatJson(readText(summary)))
+                if (!kLabelKeys.count(kv.first))
+                    r.metrics.push_back(std::move(kv));
+        } catch (const std::runtime_error&) {
+            r.metrics.clear();
+        }
+    }
+    if (!hasExit)
+        r.status = r.metrics.empty() ? "pending" : "ok";  // ok: run by an external engine
+    else if (r.exitCode == 130)
+        r.status = "pending";  // interrupted; the next invocation runs it again
+    else
+        r.status = r.exitCode == 0 && !r.metrics.empty() ? "ok" : "failed";
+    return r;
+}
+
+std::vector<RunResult> readRuns(const std::string& benchmarkDirectory) {
+    std::vector<RunResult> runs;
+    const fs::path root = fs::path(benchmarkDirectory) / "runs";
+    if (!fs::is_directory(root))
+        return runs;
+    for (const auto& entry : fs::directory_iterator(root))
+        if (entry.is_directory() && fs::exists(entry.path() / kRunSpecFile))
+            runs.push_back(readRun(entry.path().string()));
+    std::sort(runs.begin(), runs.end(),
+              [](const RunResult& a, const RunResult& b) { return a.directory < b.directory; });
+    return runs;
+}
+
+void writeResultsCsv(const std::vector<RunResult>& runs, const std::string& path) {
+    std::vector<std::string> keys = kMetricOrder;
+    for (const auto& r : runs)
+        for (const auto& kv : r.metrics)
+            if (std::find(keys.begin(), keys.end(), kv.first) == keys.end())
+                keys.push_back(kv.first);
+    std::ofstream out(path);
+    out << "world,mode,planner,start,repetition,seed,status,exit_code,log";
+    for (const auto& k : keys)
+        out << ',' << k;
+    out << '\n';
+    for (const auto& r : runs) {
+        out << csvField(r.spec.world) << ',' << r.spec.mode << ',' << csvField(r.spec.planner)
+            << ',' << r.spec.start << ',' << r.spec.repetition << ',' << r.spec.seed << ','
+            << r.status << ',' << (r.exitCode >= 0 ? std::to_string(r.exitCode) : "") << ','
+            << csvField(r.log);
+        for (const auto& k : keys) {
+            const auto it = std::find_if(r.metrics.begin(), r.metrics.end(),
+                                         [&k](const auto& kv) { return kv.first == k; });
+            out << ',' << (it == r.metrics.end() ? "" : csvField(it->second));
+        }
+        out << '\n';
+    }
+    if (!out)
+        throw std::runtime_error("cannot write " + path);
+}
+
+std::string ResultTable::markdown() const {
+    std::ostringstream out;
+    out << "|      |";
+    for (const auto& p : planners)
+        out << ' ' << displayName(p) << " |";
+    out << "\n|---|";
+    for (std::size_t i = 0; i < planners.size(); ++i)
+        out << "---|";
+    out << '\n';
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        out << "| **" << rows[r] << "** |";
+        for (std::size_t p = 0; p < planners.size(); ++p) {
+            const TableCell& c = cells[r][p];
+            if (c.worlds == 0) {
+                out << " - |";
+                continue;
+            }
+            const std::string m = format2(c.mean);
+            // Ties at the printed precision are all bold.
+            const bool bold = best[r] >= 0 && m == format2(cells[r][best[r]].mean);
+            out << ' ' << (bold ? "**" + m + "**" : m) << " ± " << format2(c.stddev) << " |";
+        }
+        out << '\n';
+    }
+    return out.str();
+}
+
+std::vector<ResultTable> buildTables(const std::vector<RunResult>& runs,
+                                     const std::vector<std::string>& plannerOrder) {
+    std::vector<std::string> modes, planners = plannerOrder;
+    for (const auto& r : runs) {
+        if (r.status != "ok")
+            continue;
+        if (std::find(modes.begin(), modes.end(), r.spec.mode) == modes.end())
+            modes.push_back(r.spec.mode);
+        if (std::find(planners.begin(), planners.end(), r.spec.planner) == planners.end())
+            planners.push_back(r.spec.planner);
+    }
+    std::vector<ResultTable> tables;
+    for (const auto& mode : modes) {
+        ResultTable t;
+        t.mode = mode;
+        t.planners = planners;
+        for (const auto& row : kRows) {
+            t.rows.push_back(row.label);
+            std::vector<TableCell> cells;
+            int best = -1;
+            for (const auto& planner : planners) {
+                std::map<std::string, std::vector<double>> perWorld;
+                for (const auto& r : runs)
+                    if (r.status == "ok" && r.spec.mode == mode && r.spec.planner == planner)
+                        perWorld[r.spec.world].push_back(r.metric(row.key));
+                std::vector<double> worldMeans;
+                for (const auto& [world, values] : perWorld)
+                    worldMeans.push_back(mean(values));
+                TableCell c{mean(worldMeans), sampleStddev(worldMeans),
+                            static_cast<int>(worldMeans.size())};
+                const bool better = best < 0 || (row.higherIsBetter ? c.mean > cells[best].mean
+                                                                    : c.mean < cells[best].mean);
+                if (c.worlds > 0 && better)
+                    best = static_cast<int>(cells.size());
+                cells.push_back(c);
+            }
+            t.cells.push_back(std::move(cells));
+            t.best.push_back(best);
+        }
+        tables.push_back(std::move(t));
+    }
+    return tables;
+}
+
+std::vector<std::string> writePlots(const std::vector<RunResult>& runs,
+                                    const std::string& plotDirectory) {
+    std::vector<std::string> written;
+    // (world, mode) -> planner -> coverage series, in run order.
+    std::vector<std::pair<std::pair<std::string, std::string>,
+                          std::vector<std::pair<std::string, std::vector<Series>>>>>
+        groups;
+    std::map<std::string, const RunResult*> bestRun;  // planner_world_mode -> highest coverage
+    std::vector<std::string> planners;
+    for (const auto& r : runs) {
+        if (r.status != "ok")
+            continue;
+        if (std::find(planners.begin(), planners.end(), r.spec.planner) == planners.end())
+            planners.push_back(r.spec.planner);
+        const auto key = std::make_pair(r.spec.world, r.spec.mode);
+        auto g = std::find_if(groups.begin(), groups.end(),
+                              [&key](const auto& e) { return e.first == key; });
+        if (g == groups.end())
+            g = groups.insert(groups.end(), {key, {}});
+        auto p = std::find_if(g->second.begin(), g->second.end(),
+                              [&r](const auto& e) { return e.first == r.spec.planner; });
+        if (p == g->second.end())
+            p = g->second.insert(g->second.end(), {r.spec.planner, {}});
+        p->second.push_back(readTimeseries(fs::path(r.directory) / "timeseries.csv"));
+        const std::string id = r.spec.planner + "_" + r.spec.world + "_" + r.spec.mode;
+        const RunResult*& best = bestRun[id];
+        if (!best || r.metric("coverage_percent") > best->metric("coverage_percent"))
+            best = &r;
+    }
+    for (const auto& [key, byPlanner] : groups) {
+        const auto path =
+            (fs::path(plotDirectory) / ("coverage_" + key.first + "_" + key.second + ".png"))
+                .string();
+        writeCoveragePlot(key.first, key.second, byPlanner, planners, path);
+        written.push_back(path);
+    }
+    for (const auto& [id, run] : bestRun) {
+        const auto path = (fs::path(plotDirectory) / ("collisions_" + id + ".png")).string();
+        writeCollisionPlot(*run, path);
+        written.push_back(path);
+    }
+    return written;
+}
+
+std::size_t aggregateBenchmark(const std::string& benchmarkDirectory,
+                               const std::vector<std::string>& plannerOrder) {
+    const fs::path dir = fs::absolute(benchmarkDirectory).lexically_normal();
+    const auto runs = readRuns(dir.string());
+    writeResultsCsv(runs, (dir / "results.csv").string());
+    std::ofstream table(dir / "table.md");
+    std::size_t ok = 0, failed = 0;
+    for (const auto& r : runs)
+        ok += r.status == "ok", failed += r.status == "failed";
+    table << "# Benchmark results\n\nMean ± std over worlds of the per-world mean of runs "
+             "(paper Table I); best value in bold (highest C, lowest T, PL, PT, NOC). "
+          << ok << " ok runs, " << failed << " failed, " << runs.size() - ok - failed
+          << " pending.\n";
+    for (const auto& t : buildTables(runs, plannerOrder)) {
+        std::set<std::string> worlds;
+        for (const auto& r : runs)
+            if (r.status == "ok" && r.spec.mode == t.mode)
+                worlds.insert(r.spec.world);
+        std::string list;
+        for (const auto& w : worlds)
+            list += (list.empty() ? "" : ", ") + w;
+        table << "\n## " << t.mode << " (" << worlds.size() << " worlds: " << list << ")\n\n"
+              << t.markdown();
+    }
+    if (!table)
+        throw std::runtime_error("cannot write " + (dir / "table.md").string());
+    writePlots(runs, (dir / "plots").string());
+    return runs.size();
+}
+
+}  // namespace daep::eval

@@ -1,0 +1,144 @@
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+
+#include "daep/common/Error.h"
+#include "daep/eval/BenchmarkConfig.h"
+#include "daep/eval/BenchmarkRunner.h"
+
+namespace fs = std::filesystem;
+using namespace daep::eval;
+
+namespace {
+
+class BenchmarkConfigTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("daep_benchcfg_" + std::to_string(::getpid()));
+        fs::create_directories(dir_);
+        std::ofstream(dir_ / "base.ini") << "[experiment]\nworld = cafe\n";
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string write(const std::string& text) {
+        const auto path = dir_ / "bench.ini";
+        std::ofstream(path) << text;
+        return path.string();
+    }
+
+    /** The InputError message of loading `text`, or "" if it loads. */
+    std::string errorOf(const std::string& text, const std::vector<std::string>& sets = {}) {
+        try {
+            loadBenchmarkConfig(write(text), sets);
+        } catch (const daep::InputError& e) {
+            return e.what();
+        }
+        return "";
+    }
+
+    fs::path dir_;
+};
+
+const char* kValid =
+    "# comment\n"
+    "[benchmark]\n"
+    "planners = rhnbvp, aep\n"
+    "worlds = crosswalks,cafe\n"
+    "modes = dynamic\n"
+    "starts = 0-1,3\n"
+    "repetitions = 2\n"
+    "seed = 10\n"
+    "experiment = base.ini\n"
+    "\n"
+    "[set]\n"
+    "experiment.max_time_s = 30\n";
+
+}  // namespace
+
+TEST_F(BenchmarkConfigTest, ExpandsTheMatrixWithDeterministicSeeds) {
+    const auto cfg = loadBenchmarkConfig(write(kValid));
+    EXPECT_EQ(cfg.planners, (std::vector<std::string>{"rhnbvp", "aep"}));
+    EXPECT_EQ(cfg.worlds, (std::vector<std::string>{"crosswalks", "cafe"}));
+    EXPECT_EQ(cfg.starts, (std::vector<int>{0, 1, 3}));
+    EXPECT_EQ(cfg.experiment, fs::weakly_canonical(dir_ / "base.ini").string());
+    ASSERT_EQ(cfg.sets.size(), 1u);
+    EXPECT_EQ(cfg.sets[0].first, "experiment.max_time_s");
+    EXPECT_EQ(cfg.sets[0].second, "30");
+
+    const auto runs = cfg.expand();
+    ASSERT_EQ(runs.size(), 2u * 2u * 1u * 3u * 2u);
+    EXPECT_EQ(runs.front().id(), "crosswalks_dynamic_rhnbvp_s0_r0");
+    EXPECT_EQ(runs.front().seed, 10);
+    EXPECT_EQ(runs[1].id(), "crosswalks_dynamic_rhnbvp_s0_r1");
+    EXPECT_EQ(runs[1].seed, 11);
+    EXPECT_EQ(runs.back().id(), "cafe_dynamic_aep_s3_r1");
+    EXPECT_EQ(runs.back().seed, 11);
+}
+
+TEST_F(BenchmarkConfigTest, CommandLineOverridesReplaceBenchmarkKeysAndAddRunSettings) {
+    const auto cfg =
+        loadBenchmarkConfig(write(kValid), {"benchmark.planners=dep", "benchmark.starts=4",
+                                            "experiment.max_time_s=60", "rhnbvp.zero_gain=0"});
+    EXPECT_EQ(cfg.planners, (std::vector<std::string>{"dep"}));
+    EXPECT_EQ(cfg.starts, (std::vector<int>{4}));
+    ASSERT_EQ(cfg.sets.size(), 2u);
+    EXPECT_EQ(cfg.sets[0].second, "60");
+    EXPECT_EQ(cfg.sets[1].first, "rhnbvp.zero_gain");
+}
+
+TEST_F(BenchmarkConfigTest, ErrorsNameFileLineAndKey) {
+    const std::string file = (dir_ / "bench.ini").string();
+    std::string text = kValid;
+    text.insert(text.find("seed"), "color = red\n");
+    EXPECT_EQ(errorOf(text), file + ":8: unknown key [benchmark] color");
+
+    EXPECT_EQ(errorOf(std::string(kValid) + "[runs]\n"), file +
+                                                             ":13: unknown section [runs] "
+                                                             "(expected [benchmark] or [set])");
+    text = kValid;
+    text.erase(text.find("repetitions"), std::string("repetitions = 2\n").size());
+    EXPECT_EQ(errorOf(text), file + ": missing required key [benchmark] repetitions");
+
+    text = kValid;
+    text.replace(text.find("0-1,3"), 5, "3-1");
+    EXPECT_EQ(errorOf(text), file + ":6: [benchmark] starts: bad range '3-1'");
+
+    text = kValid;
+    text.replace(text.find("dynamic"), 7, "windy");
+    EXPECT_NE(errorOf(text).find(file + ":5: [benchmark] modes"), std::string::npos);
+
+    EXPECT_NE(errorOf(kValid, {"benchmark.nope=1"}).find("--set benchmark.nope"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(kValid) + "experiment.planner = aep\n")
+                  .find(file + ":13: experiment.planner is set per run"),
+              std::string::npos);
+    text = kValid;
+    text.replace(text.find("base.ini"), 8, "missing.ini");
+    EXPECT_NE(errorOf(text).find(file + ":9: [benchmark] experiment: no such file"),
+              std::string::npos);
+    text = kValid;
+    text.insert(text.find("seed"), "seed = 3\n");
+    EXPECT_NE(errorOf(text).find(file + ":9: duplicate key [benchmark] seed"), std::string::npos);
+}
+
+TEST(BenchmarkIntList, ParsesRangesAndListsAndRejectsJunk) {
+    EXPECT_EQ(parseIntList("0-4"), (std::vector<int>{0, 1, 2, 3, 4}));
+    EXPECT_EQ(parseIntList("0, 2"), (std::vector<int>{0, 2}));
+    EXPECT_EQ(parseIntList("2"), (std::vector<int>{2}));
+    EXPECT_THROW(parseIntList(""), daep::InputError);
+    EXPECT_THROW(parseIntList("a"), daep::InputError);
+    EXPECT_THROW(parseIntList("1,1"), daep::InputError);
+    EXPECT_THROW(parseIntList("-1"), daep::InputError);
+    EXPECT_THROW(parseIntList("1-2x"), daep::InputError);
+}
+
+TEST(BenchmarkShellQuote, QuotesOnlyWhatNeedsIt) {
+    EXPECT_EQ(shellQuote("/a/b-c.ini"), "/a/b-c.ini");
+    EXPECT_EQ(shellQuote("experiment.max_time_s=30"), "experiment.max_time_s=30");
+    EXPECT_EQ(shellQuote("a b"), "'a b'");
+    EXPECT_EQ(shellQuote("it's"), "'it'\\''s'");
+    EXPECT_EQ(shellQuote(""), "''");
+    EXPECT_EQ(shellQuote("$HOME"), "'$HOME'");
+}

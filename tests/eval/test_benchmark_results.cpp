@@ -1,0 +1,133 @@
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "daep/eval/BenchmarkResults.h"
+#include "daep/eval/Plot.h"
+
+namespace fs = std::filesystem;
+using namespace daep::eval;
+
+namespace {
+
+std::string readText(const fs::path& p) {
+    std::ifstream f(p);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+fs::path tempDir(const std::string& name) {
+    const auto dir =
+        fs::temp_directory_path() / ("daep_benchres_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+/** A hand-written run directory: run.json, exit_code, summary.json and a short timeseries. */
+void writeRun(const fs::path& root, const RunSpec& spec, int exitCode, double coverage, double time,
+              int collisions) {
+    const auto dir = root / "runs" / spec.id();
+    writeRunSpec(dir.string(), spec);
+    std::ofstream(dir / kExitCodeFile) << exitCode << "\n";
+    if (exitCode != 0)
+        return;
+    std::ofstream(dir / "summary.json")
+        << "{\n  \"mode\": \"" << spec.mode << "\",\n  \"planner\": \"" << spec.planner
+        << "\",\n  \"world\": \"" << spec.world << "\",\n  \"coverage_percent\": " << coverage
+        << ",\n  \"exploration_time_s\": " << time << ",\n  \"path_length_m\": " << time / 10
+        << ",\n  \"planning_time_s\": 1.5,\n  \"collisions\": " << collisions
+        << ",\n  \"finished\": true,\n  \"end_reason\": \"planner finished\"\n}\n";
+    std::ofstream ts(dir / "timeseries.csv");
+    ts << "t,coverage_percent,path_length_m,planning_time_s,collisions\n";
+    for (int t = 0; t <= 10; ++t)
+        ts << t << ".000," << coverage * t / 10 << ",0,0,0\n";
+    std::ofstream(dir / "collisions.csv") << "person,start_s,end_s\n0,2.0,3.5\n1,7.0,7.4\n";
+}
+
+}  // namespace
+
+TEST(BenchmarkResults, ParsesFlatJson) {
+    const auto kv = parseFlatJson("{ \"a\": \"x \\\"y\\\"\", \"b\": 1.50,\"c\":true }");
+    ASSERT_EQ(kv.size(), 3u);
+    EXPECT_EQ(kv[0].second, "x \"y\"");
+    EXPECT_EQ(kv[1].second, "1.50");
+    EXPECT_EQ(kv[2].first, "c");
+    EXPECT_EQ(kv[2].second, "true");
+    EXPECT_THROW(parseFlatJson("{\"a\" 1}"), std::runtime_error);
+}
+
+TEST(BenchmarkResults, TableIsMeanAndStdOverWorldsOfPerWorldMeans) {
+    const auto root = tempDir("table");
+    // AEP: world A runs C = 80, 90 (mean 85); world B: 60 -> over worlds mean 72.5, std 17.68.
+    writeRun(root, {"wa", "dynamic", "aep", 0, 0, 1}, 0, 80, 100, 2);
+    writeRun(root, {"wa", "dynamic", "aep", 1, 0, 1}, 0, 90, 200, 4);
+    writeRun(root, {"wb", "dynamic", "aep", 0, 0, 1}, 0, 60, 300, 0);
+    // DEP: A 70, B 70 -> 70 ± 0, fewer collisions, shorter time in B; one failed run ignored.
+    writeRun(root, {"wa", "dynamic", "dep", 0, 0, 1}, 0, 70, 50, 1);
+    writeRun(root, {"wb", "dynamic", "dep", 0, 0, 1}, 0, 70, 50, 0);
+    writeRun(root, {"wb", "dynamic", "dep", 1, 0, 1}, 139, 0, 0, 0);
+
+    const auto runs = readRuns(root.string());
+    ASSERT_EQ(runs.size(), 6u);
+    const auto tables = buildTables(runs, {"dep", "aep"});
+    ASSERT_EQ(tables.size(), 1u);
+    const ResultTable& t = tables[0];
+    EXPECT_EQ(t.planners, (std::vector<std::string>{"dep", "aep"}));
+    ASSERT_EQ(t.rows.size(), 5u);
+    EXPECT_NEAR(t.cells[0][1].mean, 72.5, 1e-9);
+    EXPECT_NEAR(t.cells[0][1].stddev, 17.677669529, 1e-6);
+    EXPECT_EQ(t.cells[0][1].worlds, 2);
+    EXPECT_NEAR(t.cells[0][0].mean, 70.0, 1e-9);
+    EXPECT_NEAR(t.cells[0][0].stddev, 0.0, 1e-9);
+    EXPECT_EQ(t.best[0], 1);                       // highest coverage: AEP
+    EXPECT_NEAR(t.cells[1][1].mean, 225.0, 1e-9);  // T: (150 + 300) / 2
+    EXPECT_EQ(t.best[1], 0);                       // lowest time: DEP
+    EXPECT_NEAR(t.cells[4][1].mean, 1.5, 1e-9);    // NOC: (3 + 0) / 2
+    EXPECT_NEAR(t.cells[4][0].mean, 0.5, 1e-9);
+    EXPECT_EQ(t.best[4], 0);
+
+    const std::string md = t.markdown();
+    EXPECT_NE(md.find("| DEP | AEP |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| **C %** | 70.00 ± 0.00 | **72.50** ± 17.68 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| **T s** | **50.00** ± 0.00 | 225.00 ± 106.07 |"), std::string::npos) << md;
+    // PT is 1.5 for everyone: a tie is bold in both columns.
+    EXPECT_NE(md.find("| **PT s** | **1.50** ± 0.00 | **1.50** ± 0.00 |"), std::string::npos) << md;
+    fs::remove_all(root);
+}
+
+TEST(BenchmarkResults, AggregateWritesResultsTableAndPlots) {
+    const auto root = tempDir("aggregate");
+    writeRun(root, {"wa", "dynamic", "aep", 0, 0, 1}, 0, 80, 100, 2);
+    writeRun(root, {"wa", "dynamic", "aep", 0, 1, 2}, 0, 90, 100, 2);
+    writeRun(root, {"wa", "dynamic", "dep", 0, 0, 1}, 2, 0, 0, 0);
+    EXPECT_EQ(aggregateBenchmark(root.string()), 3u);
+
+    const std::string csv = readText(root / "results.csv");
+    EXPECT_EQ(csv.rfind("world,mode,planner,start,repetition,seed,status,exit_code,log,"
+                        "coverage_percent,",
+                        0),
+              0u);
+    EXPECT_NE(csv.find("wa,dynamic,aep,0,1,2,ok,0,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("wa,dynamic,dep,0,0,1,failed,2,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",planner finished,"), std::string::npos) << csv;
+    EXPECT_NE(readText(root / "table.md").find("1 failed"), std::string::npos);
+
+    const auto coverage = cv::imread((root / "plots" / "coverage_wa_dynamic.png").string());
+    ASSERT_FALSE(coverage.empty());
+    EXPECT_EQ(coverage.cols, 900);
+    EXPECT_EQ(coverage.rows, 520);
+    const auto timeline = cv::imread((root / "plots" / "collisions_aep_wa_dynamic.png").string());
+    ASSERT_FALSE(timeline.empty());
+    EXPECT_FALSE(fs::exists(root / "plots" / "collisions_dep_wa_dynamic.png"));
+    // The orange collision segments are drawn (B,G,R = 0,140,255).
+    cv::Mat orange;
+    cv::inRange(timeline, cv::Scalar(0, 130, 245), cv::Scalar(10, 150, 255), orange);
+    EXPECT_GT(cv::countNonZero(orange), 100);
+    fs::remove_all(root);
+}
