@@ -44,7 +44,7 @@ protected:
 const char* kValid =
     "# comment\n"
     "[benchmark]\n"
-    "planners = rhnbvp, aep\n"
+    "planners = rhnbvp, aep   # two planners\n"
     "worlds = crosswalks,cafe\n"
     "modes = dynamic\n"
     "starts = 0-1,3\n"

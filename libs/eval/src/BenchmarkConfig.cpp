@@ -8,6 +8,7 @@
 #include <set>
 
 #include "daep/common/Error.h"
+#include "daep/common/IniText.h"
 
 namespace fs = std::filesystem;
 
@@ -22,13 +23,6 @@ const std::set<std::string> kMatrixKeys = {"experiment.world", "experiment.mode"
                                            "experiment.planner", "experiment.start",
                                            "experiment.seed"};
 
-std::string trim(const std::string& s) {
-    const auto b = s.find_first_not_of(" \t\r\n");
-    if (b == std::string::npos)
-        return "";
-    return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
-}
-
 std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> items;
     std::string item;
@@ -37,8 +31,8 @@ std::vector<std::string> splitList(const std::string& text) {
             item += c;
             continue;
         }
-        if (!trim(item).empty())
-            items.push_back(trim(item));
+        if (!trimBlanks(item).empty())
+            items.push_back(trimBlanks(item));
         item.clear();
     }
     return items;
@@ -68,12 +62,18 @@ public:
     explicit Parser(std::string path) : path_(std::move(path)) {}
 
     void read() {
-        std::ifstream in(path_);
-        if (!in)
-            throw InputError(path_ + ": cannot open benchmark config");
-        std::string line, section;
-        for (int number = 1; std::getline(in, line); ++number)
-            readLine(trim(line), number, section);
+        const IniText ini = parseIniText(readTextFile(path_), path_);
+        for (const auto& header : ini.sections)
+            if (header.name != "benchmark" && header.name != "set")
+                throw InputError(path_ + ":" + std::to_string(header.line) + ": unknown section [" +
+                                 header.name + "] (expected [benchmark] or [set])");
+        for (const auto& e : ini.entries) {
+            const std::string where = path_ + ":" + std::to_string(e.line);
+            if (e.section == "benchmark")
+                setBenchmark(e.key, e.value, where, false);
+            else
+                addSet(e.key, e.value, where);
+        }
     }
 
     void override(const std::string& assignment) {
@@ -81,8 +81,8 @@ public:
         const auto dot = assignment.find('.');
         if (eq == std::string::npos || dot == std::string::npos || dot > eq)
             throw InputError("--set " + assignment + ": expected section.key=value");
-        const std::string key = trim(assignment.substr(0, eq));
-        const std::string value = trim(assignment.substr(eq + 1));
+        const std::string key = trimBlanks(assignment.substr(0, eq));
+        const std::string value = trimBlanks(assignment.substr(eq + 1));
         const std::string where = "--set " + key;
         if (key.compare(0, dot + 1, "benchmark.") == 0)
             setBenchmark(key.substr(dot + 1), value, where, true);
@@ -114,32 +114,6 @@ public:
     }
 
 private:
-    void readLine(const std::string& line, int number, std::string& section) {
-        const std::string where = path_ + ":" + std::to_string(number);
-        if (line.empty() || line[0] == '#' || line[0] == ';')
-            return;
-        if (line.front() == '[') {
-            if (line.back() != ']')
-                throw InputError(where + ": malformed section header '" + line + "'");
-            section = trim(line.substr(1, line.size() - 2));
-            if (section != "benchmark" && section != "set")
-                throw InputError(where + ": unknown section [" + section +
-                                 "] (expected [benchmark] or [set])");
-            return;
-        }
-        const auto eq = line.find('=');
-        if (eq == std::string::npos)
-            throw InputError(where + ": expected 'key = value', got '" + line + "'");
-        if (section.empty())
-            throw InputError(where + ": key outside a section");
-        const std::string key = trim(line.substr(0, eq));
-        const std::string value = trim(line.substr(eq + 1));
-        if (section == "benchmark")
-            setBenchmark(key, value, where, false);
-        else
-            addSet(key, value, where);
-    }
-
     void setBenchmark(const std::string& key, const std::string& value, const std::string& where,
                       bool replace) {
         if (std::find(kBenchmarkKeys.begin(), kBenchmarkKeys.end(), key) == kBenchmarkKeys.end())
@@ -244,9 +218,9 @@ std::vector<int> parseIntList(const std::string& text) {
         throw InputError("empty list");
     for (const auto& item : items) {
         const auto dash = item.find('-', 1);
-        const int lo = parseInt(trim(item.substr(0, dash)), "range");
+        const int lo = parseInt(trimBlanks(item.substr(0, dash)), "range");
         const int hi =
-            dash == std::string::npos ? lo : parseInt(trim(item.substr(dash + 1)), "range");
+            dash == std::string::npos ? lo : parseInt(trimBlanks(item.substr(dash + 1)), "range");
         if (lo < 0 || hi < lo)
             throw InputError("bad range '" + item + "'");
         for (int v = lo; v <= hi; ++v) {

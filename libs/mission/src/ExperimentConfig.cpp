@@ -10,69 +10,13 @@
 
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
+#include "daep/common/IniText.h"
 
 namespace daep::mission {
 namespace {
 
-struct IniLine {
-    std::string section, key, value;
-    int line = 0;
-};
-
-std::string trim(const std::string& s) {
-    const auto b = s.find_first_not_of(" \t\r");
-    if (b == std::string::npos)
-        return {};
-    return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-/** Strips a trailing "  # comment" (a '#' or ';' preceded by white space). */
-std::string stripComment(const std::string& s) {
-    for (std::size_t i = 1; i < s.size(); ++i)
-        if ((s[i] == '#' || s[i] == ';') && (s[i - 1] == ' ' || s[i - 1] == '\t'))
-            return s.substr(0, i);
-    return s;
-}
-
-/** A small strict ini reader that remembers line numbers for error messages. */
-std::vector<IniLine> parseIni(const std::string& text, const std::string& source) {
-    std::vector<IniLine> out;
-    std::istringstream in(text);
-    std::string raw, section;
-    for (int lineNo = 1; std::getline(in, raw); ++lineNo) {
-        const std::string line = trim(raw);
-        if (line.empty() || line[0] == '#' || line[0] == ';')
-            continue;
-        const std::string where = source + ":" + std::to_string(lineNo) + ": ";
-        if (line.front() == '[') {
-            if (line.back() != ']')
-                throw InputError(where + "malformed section header '" + line + "'");
-            section = trim(line.substr(1, line.size() - 2));
-            continue;
-        }
-        const auto eq = line.find('=');
-        if (eq == std::string::npos)
-            throw InputError(where + "expected 'key = value', got '" + line + "'");
-        if (section.empty())
-            throw InputError(where + "key outside any [section]");
-        const std::string key = trim(line.substr(0, eq));
-        if (key.empty())
-            throw InputError(where + "empty key");
-        out.push_back({section, key, trim(stripComment(line.substr(eq + 1))), lineNo});
-    }
-    return out;
-}
-
-std::string readFile(const std::string& path) {
-    std::ifstream f(path);
-    if (!f)
-        throw InputError(path + ": cannot open file");
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
-/** defaults.ini first, then every other .ini file in share/daep/config (one per planner), sorted. */
+/** defaults.ini first, then every other .ini file in share/daep/config (one per planner), sorted.
+ */
 std::vector<std::string> defaultFiles() {
     const std::filesystem::path dir = std::filesystem::path(shareDirectory()) / "config";
     const std::filesystem::path main = dir / "defaults.ini";
@@ -126,7 +70,7 @@ void ExperimentConfig::set(const std::string& section, const std::string& key,
 
 ExperimentConfig ExperimentConfig::fromFile(const std::string& path,
                                             const std::vector<std::string>& overrides) {
-    return fromText(readFile(path), path, overrides);
+    return fromText(readTextFile(path), path, overrides);
 }
 
 ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::string& source,
@@ -135,7 +79,7 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
     cfg.source_ = source;
     std::map<std::string, std::vector<std::string>> known;
     for (const auto& path : defaultFiles()) {
-        for (const auto& l : parseIni(readFile(path), path)) {
+        for (const auto& l : parseIniText(readTextFile(path), path).entries) {
             auto& keys = known[l.section];
             if (std::count(keys.begin(), keys.end(), l.key))
                 throw InputError(path + ":" + std::to_string(l.line) + ": [" + l.section + "] " +
@@ -168,7 +112,7 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
         }
     };
     std::vector<std::string> given;
-    for (const auto& l : parseIni(text, source)) {
+    for (const auto& l : parseIniText(text, source).entries) {
         checkKnown(source + ":" + std::to_string(l.line) + ": ", l.section, l.key);
         cfg.set(l.section, l.key, l.value);
         if (l.section == "experiment")
@@ -179,10 +123,10 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
         const auto eq = o.find('=');
         if (dot == std::string::npos || eq == std::string::npos || dot > eq)
             throw InputError("--set " + o + ": expected section.key=value");
-        const std::string section = trim(o.substr(0, dot));
-        const std::string key = trim(o.substr(dot + 1, eq - dot - 1));
+        const std::string section = trimBlanks(o.substr(0, dot));
+        const std::string key = trimBlanks(o.substr(dot + 1, eq - dot - 1));
         checkKnown("--set " + o + ": ", section, key);
-        cfg.set(section, key, trim(o.substr(eq + 1)));
+        cfg.set(section, key, trimBlanks(o.substr(eq + 1)));
         if (section == "experiment")
             given.push_back(key);
     }
