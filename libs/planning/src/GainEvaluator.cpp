@@ -27,33 +27,37 @@ GainParams GainParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     return g;
 }
 
-GainEvaluator::GainEvaluator(const GainParams& params) : params_(params) {
-    columns_ = tileCount(kTwoPi, params.dtheta);
-    rings_ = tileCount(params.vfov, params.dphi);
+RayCubature::RayCubature(const GainParams& params, const std::vector<double>& columnCentres) {
+    const double columnWidth = kTwoPi / static_cast<double>(columnCentres.size());
+    rings = tileCount(params.vfov, params.dphi);
     const int shells = tileCount(params.range, params.dr);
-    columnWidth_ = kTwoPi / columns_;
-    const double dphi = params.vfov / rings_;
+    const double dphi = params.vfov / rings;
     const double dr = params.range / shells;
-    phiMin_ = 0.5 * (M_PI - params.vfov);
-    phiMax_ = phiMin_ + params.vfov;
-
-    std::vector<double> phis(rings_);
-    for (int j = 0; j < rings_; ++j) {
-        phis[j] = phiMin_ + (j + 0.5) * dphi;
-        ringWeights_.push_back(columnWidth_ * 2.0 * std::sin(phis[j]) * std::sin(0.5 * dphi));
+    phiMin = 0.5 * (M_PI - params.vfov);
+    phiMax = phiMin + params.vfov;
+    std::vector<double> phis(rings);
+    for (int j = 0; j < rings; ++j) {
+        phis[j] = phiMin + (j + 0.5) * dphi;
+        ringWeights.push_back(columnWidth * 2.0 * std::sin(phis[j]) * std::sin(0.5 * dphi));
     }
-    for (int i = 0; i < columns_; ++i) {
-        const double theta = (i + 0.5) * columnWidth_;
-        for (int j = 0; j < rings_; ++j) {
-            directions_.emplace_back(std::sin(phis[j]) * std::cos(theta),
-                                     std::sin(phis[j]) * std::sin(theta), std::cos(phis[j]));
-        }
-    }
+    for (const double theta : columnCentres)
+        for (int j = 0; j < rings; ++j)
+            directions.emplace_back(std::sin(phis[j]) * std::cos(theta),
+                                    std::sin(phis[j]) * std::sin(theta), std::cos(phis[j]));
     for (int k = 0; k < shells; ++k) {
         const double r = (k + 0.5) * dr;
-        radii_.push_back(r);
-        shellWeights_.push_back(r * r * dr + dr * dr * dr / 12.0);
+        radii.push_back(r);
+        shellWeights.push_back(r * r * dr + dr * dr * dr / 12.0);
     }
+}
+
+GainEvaluator::GainEvaluator(const GainParams& params) : params_(params) {
+    columns_ = tileCount(kTwoPi, params.dtheta);
+    columnWidth_ = kTwoPi / columns_;
+    std::vector<double> centres(columns_);
+    for (int i = 0; i < columns_; ++i)
+        centres[i] = (i + 0.5) * columnWidth_;
+    cubature_ = RayCubature(params, centres);
 }
 
 double GainEvaluator::columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
@@ -62,18 +66,18 @@ double GainEvaluator::columnGain(const mapping::ExplorationMap& map, const Eigen
     if (!box.contains(p))
         return 0.0;
     double gain = 0.0;
-    for (int j = 0; j < rings_; ++j) {
-        const Eigen::Vector3d& dir = directions_[column * rings_ + j];
+    for (int j = 0; j < cubature_.rings; ++j) {
+        const Eigen::Vector3d& dir = cubature_.directions[column * cubature_.rings + j];
         const double exit = exitDistance(box, p, dir);
         double ray = 0.0;
-        for (std::size_t k = 0; k < radii_.size() && radii_[k] <= exit; ++k) {
-            const mapping::CellState s = map.state(p + radii_[k] * dir);
+        for (std::size_t k = 0; k < cubature_.radii.size() && cubature_.radii[k] <= exit; ++k) {
+            const mapping::CellState s = map.state(p + cubature_.radii[k] * dir);
             if (s == mapping::CellState::Occupied)
                 break;
             if (s == mapping::CellState::Unknown)
-                ray += shellWeights_[k];
+                ray += cubature_.shellWeights[k];
         }
-        gain += ringWeights_[j] * ray;
+        gain += cubature_.ringWeights[j] * ray;
     }
     return gain;
 }

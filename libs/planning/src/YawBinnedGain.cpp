@@ -12,34 +12,16 @@
 namespace daep::planning {
 using detail::exitDistance;
 using detail::kTwoPi;
-using detail::tileCount;
 
 YawBinnedGain::YawBinnedGain(const GainParams& params, int bins, const CellWeights& weights)
     : params_(params), weights_(weights), bins_(bins) {
     if (bins < 1 || bins > 64)
         throw std::invalid_argument("YawBinnedGain: bins must be in [1, 64]");
     binWidth_ = kTwoPi / bins_;
-    rings_ = tileCount(params.vfov, params.dphi);
-    const int shells = tileCount(params.range, params.dr);
-    const double dphi = params.vfov / rings_;
-    const double dr = params.range / shells;
-    const double phiMin = 0.5 * (M_PI - params.vfov);
-    std::vector<double> phis(rings_);
-    for (int j = 0; j < rings_; ++j) {
-        phis[j] = phiMin + (j + 0.5) * dphi;
-        ringWeights_.push_back(binWidth_ * 2.0 * std::sin(phis[j]) * std::sin(0.5 * dphi));
-    }
-    for (int i = 0; i < bins_; ++i) {
-        const double theta = binYaw(i);  // column i spans theta +- binWidth/2
-        for (int j = 0; j < rings_; ++j)
-            directions_.emplace_back(std::sin(phis[j]) * std::cos(theta),
-                                     std::sin(phis[j]) * std::sin(theta), std::cos(phis[j]));
-    }
-    for (int k = 0; k < shells; ++k) {
-        const double r = (k + 0.5) * dr;
-        radii_.push_back(r);
-        shellWeights_.push_back(r * r * dr + dr * dr * dr / 12.0);
-    }
+    std::vector<double> centres(bins_);
+    for (int i = 0; i < bins_; ++i)
+        centres[i] = binYaw(i);  // column i spans its heading +- binWidth/2
+    cubature_ = RayCubature(params, centres);
     // Columns are centred on the bin headings: column k spans [(k - 0.5) w, (k + 0.5) w].
     const double half = 0.5 * std::min(params.hfov, kTwoPi) / binWidth_;  // in columns
     const int reach = static_cast<int>(std::ceil(half + 0.5));
@@ -84,19 +66,19 @@ double YawBinnedGain::columnGain(const mapping::ExplorationMap& map, const Eigen
                                  int column) const {
     const Aabb& box = map.explorationBox();
     double gain = 0.0;
-    for (int j = 0; j < rings_; ++j) {
-        const Eigen::Vector3d& dir = directions_[column * rings_ + j];
+    for (int j = 0; j < cubature_.rings; ++j) {
+        const Eigen::Vector3d& dir = cubature_.directions[column * cubature_.rings + j];
         const double exit = exitDistance(box, p, dir);
         double ray = 0.0;
-        for (std::size_t k = 0; k < radii_.size() && radii_[k] <= exit; ++k) {
-            const Eigen::Vector3d q = p + radii_[k] * dir;
+        for (std::size_t k = 0; k < cubature_.radii.size() && cubature_.radii[k] <= exit; ++k) {
+            const Eigen::Vector3d q = p + cubature_.radii[k] * dir;
             const mapping::CellState s = map.state(q);
             if (s == mapping::CellState::Occupied)
                 break;
             if (s == mapping::CellState::Unknown)
-                ray += shellWeights_[k] * cellWeight(map, q);
+                ray += cubature_.shellWeights[k] * cellWeight(map, q);
         }
-        gain += ringWeights_[j] * ray;
+        gain += cubature_.ringWeights[j] * ray;
     }
     return gain;
 }

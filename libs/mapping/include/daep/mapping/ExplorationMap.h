@@ -46,7 +46,8 @@ public:
     ExplorationMap& operator=(const ExplorationMap&) = delete;
 
     /** Integrates points (world frame) seen from origin: ray clearing + endpoint hits. */
-    void insertPointCloud(const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3f>& points);
+    void insertPointCloud(const Eigen::Vector3d& origin,
+                          const std::vector<Eigen::Vector3f>& points);
 
     /**
      * Unprojects a depth observation with MRPT (honouring its sensorPose) placed at the robot

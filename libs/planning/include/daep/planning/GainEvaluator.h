@@ -26,6 +26,24 @@ struct GainParams {
     static GainParams fromConfig(const mrpt::config::CConfigFileBase& config);
 };
 
+/**
+ * The sample grid of the ray cubature: for each column (an azimuth sector of the full circle)
+ * a fan of rings (elevation cells filling the vertical FoV), and shells along each ray.
+ */
+struct RayCubature {
+    RayCubature() = default;
+    /** Columns of equal width 2 pi / n, their central azimuths given. */
+    RayCubature(const GainParams& params, const std::vector<double>& columnCentres);
+
+    int rings = 0;
+    double phiMin = 0.0;  ///< elevation cells span [phiMin, phiMax], measured from +z
+    double phiMax = 0.0;
+    std::vector<Eigen::Vector3d> directions;  ///< [column * rings + ring], unit length
+    std::vector<double> ringWeights;          ///< solid angle of each ring's cell in a column
+    std::vector<double> radii;                ///< shell mid-radii
+    std::vector<double> shellWeights;         ///< r^2 dr + dr^3 / 12 per shell
+};
+
 /** A heading and the unknown volume (m^3) seen with the camera at that heading. */
 struct YawGain {
     double yaw = 0.0;
@@ -70,8 +88,8 @@ public:
     int columnCount() const { return columns_; }
     double columnWidth() const { return columnWidth_; }
     /** Angular extent actually covered by the elevation rings, [phi_min, phi_max] from +z. */
-    double phiMin() const { return phiMin_; }
-    double phiMax() const { return phiMax_; }
+    double phiMin() const { return cubature_.phiMin; }
+    double phiMax() const { return cubature_.phiMax; }
 
 private:
     double columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
@@ -81,14 +99,8 @@ private:
 
     GainParams params_;
     int columns_ = 0;
-    int rings_ = 0;
     double columnWidth_ = 0.0;
-    double phiMin_ = 0.0;
-    double phiMax_ = 0.0;
-    std::vector<Eigen::Vector3d> directions_;  ///< [column * rings_ + ring], unit length
-    std::vector<double> ringWeights_;          ///< solid angle of each ring's cell
-    std::vector<double> radii_;                ///< shell mid-radii
-    std::vector<double> shellWeights_;         ///< r^2 dr + dr^3 / 12 per shell
+    RayCubature cubature_;
 };
 
 }  // namespace daep::planning

@@ -58,12 +58,8 @@ private:
     GainParams params_;
     CellWeights weights_;
     int bins_ = 32;
-    int rings_ = 0;
     double binWidth_ = 0.0;
-    std::vector<Eigen::Vector3d> directions_;  ///< [column * rings_ + ring]
-    std::vector<double> ringWeights_;
-    std::vector<double> radii_;
-    std::vector<double> shellWeights_;
+    RayCubature cubature_;
     /** Field-of-view window: fraction of column (bin + offset) seen at a bin's heading. */
     std::vector<std::pair<int, double>> window_;
 };
