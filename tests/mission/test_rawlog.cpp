@@ -3,6 +3,7 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/serialization/CArchive.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <map>
@@ -41,7 +42,8 @@ bool insideWorld(const Eigen::Vector3f& p) {
 }
 
 TEST(Rawlog, MissionStreamsDepthFramesDronePoseAndPeople) {
-    const fs::path out = fs::temp_directory_path() / "daep_test_rawlog";
+    const fs::path out =
+        fs::temp_directory_path() / ("daep_test_rawlog_" + std::to_string(::getpid()));
     fs::remove_all(out);
     const auto config = daep::mission::ExperimentConfig::fromFile(
         kTinyRoom, {"experiment.max_time_s=10", "output.rawlog=true", "output.scene=false"});

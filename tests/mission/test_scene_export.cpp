@@ -6,6 +6,7 @@
 #include <mrpt/opengl/CSetOfLines.h>
 #include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt/serialization/CArchive.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <set>
@@ -33,7 +34,7 @@ std::size_t distinctColours(const mrpt::img::CImage& image) {
 class SceneExport : public ::testing::Test {
 protected:
     void SetUp() override {
-        out_ = fs::temp_directory_path() / "daep_test_scene_export";
+        out_ = fs::temp_directory_path() / ("daep_test_scene_export_" + std::to_string(::getpid()));
         fs::remove_all(out_);
         const auto config = daep::mission::ExperimentConfig::fromFile(
             kTinyRoom,
