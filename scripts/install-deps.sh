@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ccache pkg-config
   libmrpt-dev mrpt-apps mrpt-common
   liboctomap-dev libeigen3-dev libopencv-dev
-  libembree-dev libassimp-dev libnanoflann-dev
+  libembree-dev libassimp-dev libnanoflann-dev libtinyxml2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libopengl0
 )
