@@ -53,7 +53,7 @@ std::string jsonString(const std::string& s) {
     return out + "\"";
 }
 
-RunRecorder::RunRecorder(const std::string& directory) : directory_(directory) {
+RunRecorder::RunRecorder(const std::string& directory, PlansFormat plans) : directory_(directory) {
     std::error_code ec;
     std::filesystem::create_directories(directory_, ec);
     if (ec)
@@ -62,7 +62,11 @@ RunRecorder::RunRecorder(const std::string& directory) : directory_(directory) {
     timeseries_ = openForWriting(path("timeseries.csv"),
                                  "t,coverage_percent,path_length_m,planning_time_s,collisions\n");
     trajectory_ = openForWriting(path("trajectory.csv"), "sim_time,x,y,z,yaw\n");
-    plans_ = openForWriting(path("plans.csv"), "t,charged_s,status,gain,waypoints\n");
+    plans_ = openForWriting(path("plans.csv"),
+                            plans == PlansFormat::Flight
+                                ? "t,charged_s,status,gain,waypoints\n"
+                                : "t,x,y,z,yaw,status,gain,waypoints,wp_x,wp_y,wp_z,wp_yaw,safe,"
+                                  "plan_ms\n");
 }
 
 RunRecorder::~RunRecorder() {
@@ -92,6 +96,22 @@ void RunRecorder::addPlan(double time, double chargedSec, double wallSec, const 
     wallPlanTimes_.push_back(wallSec);
     std::fprintf(plans_, "%.3f,%.6f,%s,%.4f,%d\n", time, chargedSec, status.c_str(), gain,
                  waypoints);
+}
+
+void RunRecorder::addReplayPlan(const ReplayPlanRecord& r) {
+    chargedPlanTimes_.push_back(r.wallSec);
+    wallPlanTimes_.push_back(r.wallSec);
+    const Eigen::Vector3d& p = r.pose.position;
+    const Eigen::Vector3d& w = r.firstWaypoint.position;
+    std::fprintf(plans_, "%.3f,%.4f,%.4f,%.4f,%.4f,%s,%.4f,%d,", r.time, p.x(), p.y(), p.z(),
+                 r.pose.yaw, r.status.c_str(), r.gain, r.waypoints);
+    if (r.waypoints > 0)
+        std::fprintf(plans_, "%.4f,%.4f,%.4f,%.4f,", w.x(), w.y(), w.z(), r.firstWaypoint.yaw);
+    else
+        std::fputs(",,,,", plans_);
+    if (r.safe >= 0)
+        std::fprintf(plans_, "%d", r.safe);
+    std::fprintf(plans_, ",%.3f\n", 1e3 * r.wallSec);
 }
 
 void RunRecorder::addCollision(int personIndex, double start, double end) {

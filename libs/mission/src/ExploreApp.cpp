@@ -10,6 +10,7 @@
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/Mission.h"
+#include "daep/mission/RawlogMission.h"
 #include "daep/planning/Planner.h"
 #include "daep/world/WorldSpec.h"
 
@@ -17,10 +18,30 @@ namespace daep::mission {
 namespace {
 
 Mission* g_running = nullptr;
+RawlogMission* g_replaying = nullptr;
 
 extern "C" void onInterrupt(int) {
     if (g_running)
         g_running->requestStop();
+    if (g_replaying)
+        g_replaying->requestStop();
+}
+
+/** Runs a Mission or RawlogMission with Ctrl-C asking it to stop. */
+template <typename M>
+eval::RunSummary runInterruptible(M& mission, M*& registered) {
+    registered = &mission;
+    const auto previous = std::signal(SIGINT, onInterrupt);
+    try {
+        const eval::RunSummary summary = mission.run();
+        std::signal(SIGINT, previous);
+        registered = nullptr;
+        return summary;
+    } catch (...) {
+        std::signal(SIGINT, previous);
+        registered = nullptr;
+        throw;
+    }
 }
 
 std::string joined(const std::vector<std::string>& v) {
@@ -55,7 +76,8 @@ std::string ExploreApp::usage() {
            "\n"
            "Runs one exploration mission in the built-in simulator and writes summary.json,\n"
            "timeseries.csv, trajectory.csv, plans.csv, collisions.csv, timing.json, config.ini\n"
-           "and map.bt to DIR (default: out/<CONFIG name>).\n";
+           "and map.bt to DIR (default: out/<CONFIG name>). With experiment.source=rawlog it\n"
+           "replays experiment.rawlog_file instead: maps it and runs the planner on it.\n";
 }
 
 bool ExploreApp::initialize(int argc, const char* const* argv) {
@@ -103,19 +125,16 @@ int ExploreApp::run() {
         const ExperimentConfig config = ExperimentConfig::fromFile(configPath_, overrides_);
         if (!quiet_)
             std::cout << "# Effective parameters (" << configPath_ << ")\n" << config.dump();
-        Mission mission(config, outputDir_, quiet_ ? nullptr : &std::cout);
-        std::ofstream(outputDir_ + "/config.ini") << config.dump();
-        g_running = &mission;
-        const auto previous = std::signal(SIGINT, onInterrupt);
-        try {
-            summary_ = mission.run();
-        } catch (...) {
-            std::signal(SIGINT, previous);
-            g_running = nullptr;
-            throw;
+        std::ostream* log = quiet_ ? nullptr : &std::cout;
+        if (RawlogMission::selectedBy(config)) {
+            RawlogMission replay(config, outputDir_, log);
+            std::ofstream(outputDir_ + "/config.ini") << config.dump();
+            summary_ = runInterruptible(replay, g_replaying);
+        } else {
+            Mission mission(config, outputDir_, log);
+            std::ofstream(outputDir_ + "/config.ini") << config.dump();
+            summary_ = runInterruptible(mission, g_running);
         }
-        std::signal(SIGINT, previous);
-        g_running = nullptr;
         printSummary(summary_, outputDir_);
         return summary_.endReason == "interrupted" ? 130 : 0;
     } catch (const InputError& e) {

@@ -41,6 +41,21 @@ struct RunSummary {
     std::map<std::string, std::string> labels;
 };
 
+/** One planner call on recorded data (source = rawlog): where from, and what it would fly. */
+struct ReplayPlanRecord {
+    double time = 0.0;  ///< rawlog time since the first depth frame, s
+    FlatPose pose;      ///< the robot pose the planner planned from
+    std::string status;
+    double gain = 0.0;
+    int waypoints = 0;
+    FlatPose firstWaypoint;  ///< meaningful when waypoints > 0
+    int safe = -1;           ///< keepFlying() on the plan from `pose`: 1, 0, or -1 (no path)
+    double wallSec = 0.0;    ///< the planner's real time
+};
+
+/** Columns of plans.csv: a simulated flight's, or a rawlog replay's. */
+enum class PlansFormat { Flight, Replay };
+
 /**
  * Streams a run's records to DIR as they happen (so an interrupted run keeps what it had):
  * timeseries.csv, trajectory.csv and plans.csv; writes summary.json and timing.json at the end.
@@ -49,7 +64,7 @@ struct RunSummary {
 class RunRecorder {
 public:
     /** Creates DIR (and parents); throws std::runtime_error naming the path on failure. */
-    explicit RunRecorder(const std::string& directory);
+    explicit RunRecorder(const std::string& directory, PlansFormat plans = PlansFormat::Flight);
     ~RunRecorder();
 
     const std::string& directory() const { return directory_; }
@@ -61,6 +76,8 @@ public:
     /** One planner call: when, how long it was charged, its real duration, its outcome. */
     void addPlan(double time, double chargedSec, double wallSec, const std::string& status,
                  double gain, int waypoints);
+    /** One planner call of a replay (PlansFormat::Replay); its real time counts as charged. */
+    void addReplayPlan(const ReplayPlanRecord& plan);
     void addCollision(int personIndex, double start, double end);
 
     const std::vector<MetricsSample>& samples() const { return samples_; }

@@ -1,0 +1,51 @@
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "daep/common/Types.h"
+
+namespace mrpt::obs {
+class CObservation3DRangeScan;
+}
+
+namespace daep::mission {
+
+/** One depth frame of a rawlog with the robot pose it was taken from. */
+struct RawlogFrame {
+    double stamp = 0.0;  ///< the observation's timestamp, seconds since the Unix epoch
+    std::shared_ptr<mrpt::obs::CObservation3DRangeScan> depth;
+    FlatPose robot;        ///< identity when the rawlog gave no pose at or before `stamp`
+    bool hasPose = false;  ///< a pose observation gave `robot`
+};
+
+/**
+ * Streams the depth frames of an MRPT rawlog (observations format, or actions / sensory-frames
+ * format: observations inside CSensoryFrame are taken in order, CActionCollection is skipped),
+ * one serialized object at a time. A depth frame is a CObservation3DRangeScan with a range
+ * image (and the given sensor label, if one is given). Its robot pose is the latest
+ * CObservationRobotPose labelled poseLabel whose timestamp is at or before the frame's: pose
+ * observations recorded just after the frame with the same timestamp (our simulator writes
+ * the frame, then the pose) still pair with it. Errors are daep::InputError naming the file.
+ */
+class RawlogReader {
+public:
+    RawlogReader(const std::string& path, std::string sensorLabel, std::string poseLabel);
+    ~RawlogReader();
+    RawlogReader(const RawlogReader&) = delete;
+    RawlogReader& operator=(const RawlogReader&) = delete;
+
+    /** The next depth frame; false at the end of the file. */
+    bool next(RawlogFrame& frame);
+
+    const std::string& path() const;
+    /** Serialized objects read so far. */
+    std::size_t objectsRead() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace daep::mission

@@ -1,0 +1,314 @@
+// [experiment] source = rawlog: RawlogMission replays recorded depth frames into the map and
+// runs the planner on them.
+#include <gtest/gtest.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/serialization/CArchive.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "daep/common/Error.h"
+#include "daep/mapping/DepthUnprojection.h"
+#include "daep/mapping/ExplorationMap.h"
+#include "daep/mission/ExperimentConfig.h"
+#include "daep/mission/Mission.h"
+#include "daep/mission/RawlogMission.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using daep::mission::ExperimentConfig;
+using daep::mission::RawlogMission;
+using mrpt::serialization::CSerializable;
+
+const std::string kTinyRoom = std::string(DAEP_SOURCE_DIR) + "/tests/e2e/data/tiny_room.ini";
+const std::string kDataset = std::string(DAEP_SOURCE_DIR) + "/datasets/tiny_room_dynamic.rawlog";
+const std::string kKinect = "/usr/share/mrpt/datasets/tests_rgbd.rawlog";
+
+fs::path freshDir(const std::string& name) {
+    const fs::path d =
+        fs::temp_directory_path() / ("daep_test_rawsrc_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+std::string readBytes(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+std::vector<std::string> lines(const fs::path& p) {
+    std::ifstream f(p);
+    std::vector<std::string> out;
+    for (std::string l; std::getline(f, l);)
+        out.push_back(l);
+    return out;
+}
+
+std::vector<std::string> fields(const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');)
+        out.push_back(f);
+    if (!line.empty() && line.back() == ',')
+        out.emplace_back();
+    return out;
+}
+
+ExperimentConfig replayConfig(const std::string& rawlog, std::vector<std::string> more = {}) {
+    std::vector<std::string> o = {"experiment.source=rawlog", "experiment.rawlog_file=" + rawlog,
+                                  "output.scene=false"};
+    o.insert(o.end(), more.begin(), more.end());
+    return ExperimentConfig::fromFile(kTinyRoom, o);
+}
+
+std::vector<CSerializable::Ptr> readObjects(const std::string& path, std::size_t max) {
+    mrpt::io::CFileGZInputStream in(path);
+    auto arch = mrpt::serialization::archiveFrom(in);
+    std::vector<CSerializable::Ptr> objects;
+    try {
+        while (objects.size() < max) {
+            CSerializable::Ptr o;
+            arch >> o;
+            objects.push_back(o);
+        }
+    } catch (const mrpt::serialization::CExceptionEOF&) {
+    }
+    return objects;
+}
+
+void writeObjects(const std::string& path, const std::vector<CSerializable::Ptr>& objects) {
+    mrpt::io::CFileGZOutputStream out(path);
+    auto arch = mrpt::serialization::archiveFrom(out);
+    for (const auto& o : objects)
+        arch << *o;
+}
+
+/** The same observations in the actions / sensory-frames format, one frame per timestamp. */
+std::vector<CSerializable::Ptr> asSensoryFrames(const std::vector<CSerializable::Ptr>& objects) {
+    std::vector<CSerializable::Ptr> out;
+    mrpt::obs::CSensoryFrame::Ptr sf;
+    mrpt::Clock::time_point stamp{};
+    for (const auto& o : objects) {
+        auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(o);
+        if (!sf || obs->timestamp != stamp) {
+            auto acts = mrpt::obs::CActionCollection::Create();
+            out.push_back(acts);
+            sf = mrpt::obs::CSensoryFrame::Create();
+            out.push_back(sf);
+            stamp = obs->timestamp;
+        }
+        sf->insert(obs);
+    }
+    return out;
+}
+
+/** Recording a simulated run and replaying it with the same settings gives the same map. */
+TEST(RawlogSource, ReplayOfARecordedRunGivesTheSameMap) {
+    const fs::path sim = freshDir("sim"), replay = freshDir("replay");
+    const auto simConfig = ExperimentConfig::fromFile(
+        kTinyRoom, {"experiment.max_time_s=6", "output.rawlog=true", "output.scene=false"});
+    const auto simSummary = daep::mission::Mission(simConfig, sim.string(), nullptr).run();
+
+    RawlogMission mission(
+        replayConfig((sim / "run.rawlog").string(), {"rawlog.world=tiny_room.yaml"}), replay,
+        nullptr);
+    const auto summary = mission.run();
+
+    const std::size_t simFrames = lines(sim / "trajectory.csv").size() - 1;
+    std::cout << "round trip: " << simFrames << " frames, sim known " << simSummary.knownVolume
+              << " m^3, replay known " << summary.knownVolume << " m^3 ("
+              << mission.map().knownCellsInBox() << " cells), map.bt "
+              << readBytes(sim / "map.bt").size() << " bytes\n";
+    EXPECT_EQ(mission.frames(), simFrames);
+    EXPECT_GT(mission.map().knownCellsInBox(), 1000u);
+    EXPECT_DOUBLE_EQ(summary.knownVolume, simSummary.knownVolume);
+    EXPECT_DOUBLE_EQ(summary.coveragePercent, simSummary.coveragePercent);
+    EXPECT_EQ(readBytes(replay / "map.bt"), readBytes(sim / "map.bt"));
+    // The replay's trajectory is the recorded one, on the rawlog clock (t = 0 at spawn).
+    EXPECT_EQ(readBytes(replay / "trajectory.csv"), readBytes(sim / "trajectory.csv"));
+    EXPECT_EQ(summary.endReason, "end of rawlog");
+}
+
+/** The shipped dynamic-world rawlog replays with RH-NBVP and writes one plan per second. */
+TEST(RawlogSource, ShippedDatasetReplaysWithAPlanner) {
+    const fs::path out = freshDir("dataset");
+    RawlogMission mission(
+        replayConfig(kDataset, {"rawlog.world=tiny_room.yaml", "experiment.planner=rhnbvp",
+                                "rawlog.plan_every_s=1.0"}),
+        out, nullptr);
+    const auto s = mission.run();
+    EXPECT_EQ(mission.frames(), 102u);
+    EXPECT_NEAR(s.explorationTime, 20.2, 1e-6);
+    EXPECT_EQ(s.iterations, 21);  // t = 0, 1, ..., 20
+    EXPECT_GT(s.coveragePercent, 30.0);
+    EXPECT_LE(s.coveragePercent, 100.0);
+    EXPECT_EQ(s.collisions, 0);
+    EXPECT_FALSE(s.finished);
+    EXPECT_EQ(s.endReason, "end of rawlog");
+
+    const auto plans = lines(out / "plans.csv");
+    ASSERT_EQ(plans.size(), 22u);
+    EXPECT_EQ(plans[0], "t,x,y,z,yaw,status,gain,waypoints,wp_x,wp_y,wp_z,wp_yaw,safe,plan_ms");
+    int withPath = 0, withGain = 0;
+    for (std::size_t i = 1; i < plans.size(); ++i) {
+        const auto f = fields(plans[i]);
+        ASSERT_EQ(f.size(), 14u) << plans[i];
+        EXPECT_NEAR(std::stod(f[0]), double(i - 1), 0.21) << plans[i];
+        if (std::stoi(f[7]) > 0) {
+            ++withPath;
+            EXPECT_TRUE(f[12] == "0" || f[12] == "1") << plans[i];
+            withGain += std::stod(f[6]) > 0.0 ? 1 : 0;
+        } else {
+            EXPECT_EQ(f[12], "") << plans[i];
+        }
+    }
+    EXPECT_GE(withPath, 5);
+    EXPECT_GE(withGain, 3);
+    for (const char* file : {"summary.json", "timeseries.csv", "trajectory.csv", "map.bt",
+                             "timing.json", "collisions.csv"})
+        EXPECT_TRUE(fs::exists(out / file)) << file;
+    EXPECT_EQ(lines(out / "trajectory.csv").size(), 103u);
+    EXPECT_EQ(lines(out / "timeseries.csv").size(), 22u);  // header + t = 0..20
+}
+
+/** The sensory-frames format (CActionCollection + CSensoryFrame) maps like observations. */
+TEST(RawlogSource, SensoryFrameFormatGivesTheSameMapAsObservations) {
+    const fs::path dir = freshDir("sf");
+    const auto objects = readObjects(kDataset, 45);  // 15 frames: scan, drone, person
+    writeObjects((dir / "obs.rawlog").string(), objects);
+    writeObjects((dir / "sf.rawlog").string(), asSensoryFrames(objects));
+    RawlogMission a(replayConfig((dir / "obs.rawlog").string(), {"rawlog.world=tiny_room.yaml"}),
+                    dir / "a", nullptr);
+    RawlogMission b(replayConfig((dir / "sf.rawlog").string(), {"rawlog.world=tiny_room.yaml"}),
+                    dir / "b", nullptr);
+    a.run();
+    b.run();
+    EXPECT_EQ(a.frames(), 15u);
+    EXPECT_EQ(b.frames(), 15u);
+    EXPECT_GT(a.map().knownCellsInBox(), 500u);
+    EXPECT_EQ(a.map().knownCellsInBox(), b.map().knownCellsInBox());
+    EXPECT_EQ(readBytes(dir / "a" / "map.bt"), readBytes(dir / "b" / "map.bt"));
+}
+
+/** MRPT's real Kinect frame (no robot poses): its surfaces land in front of the camera. */
+TEST(RawlogSource, KinectFrameFromMrptDatasetsIsMapped) {
+    if (!fs::exists(kKinect))
+        GTEST_SKIP() << kKinect << " missing (Debian package mrpt-common)";
+    const fs::path out = freshDir("kinect");
+    RawlogMission mission(replayConfig(kKinect), out, nullptr);
+    const auto s = mission.run();
+    EXPECT_EQ(mission.frames(), 1u);
+    EXPECT_EQ(s.iterations, 1);
+    const auto& map = mission.map();
+    EXPECT_GT(map.knownCellsInBox(), 400u);  // a ~2 m deep frustum at 0.2 m cells
+
+    const auto objects = readObjects(kKinect, 1);
+    auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(objects.at(0));
+    ASSERT_TRUE(scan);
+    scan->load();
+    const auto points = daep::mapping::unprojectDepthImage(*scan, daep::FlatPose{});
+    ASSERT_GT(points.size(), 10000u);
+    const auto& sp = scan->sensorPose;
+    const Eigen::Vector3f origin(float(sp.x()), float(sp.y()), float(sp.z()));
+    const auto& r = sp.getRotationMatrix();
+    const Eigen::Vector3f forward(float(r(0, 0)), float(r(1, 0)), float(r(2, 0)));
+    std::vector<float> depths;
+    std::size_t occupied = 0, inReach = 0;
+    for (std::size_t i = 0; i < points.size(); i += 7) {
+        const Eigen::Vector3f d = points[i] - origin;
+        depths.push_back(d.dot(forward));
+        if (d.norm() < 4.5f && map.explorationBox().contains(points[i].cast<double>())) {
+            ++inReach;
+            occupied += map.isOccupied(points[i].cast<double>()) ? 1 : 0;
+        }
+    }
+    std::sort(depths.begin(), depths.end());
+    std::cout << "kinect: " << points.size() << " points, depth " << depths.front() << " .. "
+              << depths.back() << " m (median " << depths[depths.size() / 2] << "), "
+              << map.knownCellsInBox() << " known cells, " << occupied << "/" << inReach
+              << " sampled points on occupied cells\n";
+    EXPECT_GT(depths.front(), 0.3f);  // everything in front of the camera
+    EXPECT_LT(depths.back(), 12.0f);
+    EXPECT_GT(depths[depths.size() / 2], 0.5f);
+    EXPECT_LT(depths[depths.size() / 2], 6.0f);
+    ASSERT_GT(inReach, 1000u);
+    EXPECT_GT(double(occupied), 0.9 * double(inReach));
+    // Behind the camera nothing is known.
+    const Eigen::Vector3f behind = origin - 1.5f * forward;
+    EXPECT_TRUE(map.isUnknown(behind.cast<double>()));
+}
+
+template <typename F>
+std::string inputErrorOf(F&& f) {
+    try {
+        f();
+    } catch (const daep::InputError& e) {
+        return e.what();
+    }
+    return "(no InputError)";
+}
+
+TEST(RawlogSource, BadInputsAreInputErrorsNamingTheFileOrKey) {
+    const fs::path dir = freshDir("bad");
+    const auto make = [&](const ExperimentConfig& c) { RawlogMission(c, dir / "out", nullptr); };
+
+    EXPECT_NE(inputErrorOf([&] { make(replayConfig("")); }).find("rawlog_file"), std::string::npos);
+    const std::string missing = (dir / "missing.rawlog").string();
+    EXPECT_NE(inputErrorOf([&] { make(replayConfig(missing)); }).find(missing), std::string::npos);
+
+    const std::string garbage = (dir / "garbage.rawlog").string();
+    std::ofstream(garbage) << "this is not a rawlog, just some text that is long enough\n";
+    EXPECT_NE(inputErrorOf([&] { make(replayConfig(garbage)); }).find(garbage), std::string::npos);
+
+    const std::string noDepth = (dir / "odometry_only.rawlog").string();
+    auto odo = mrpt::obs::CObservationOdometry::Create();
+    odo->timestamp = mrpt::Clock::fromDouble(1e9);
+    writeObjects(noDepth, {odo, odo});
+    const std::string e = inputErrorOf([&] { make(replayConfig(noDepth)); });
+    EXPECT_NE(e.find(noDepth), std::string::npos) << e;
+    EXPECT_NE(e.find("no depth frames"), std::string::npos) << e;
+
+    // A depth label that no frame has is the same as no depth frames.
+    EXPECT_NE(inputErrorOf([&] {
+                  make(replayConfig(kDataset, {"rawlog.sensor_label=NOPE"}));
+              }).find("no depth frames"),
+              std::string::npos);
+    EXPECT_NE(inputErrorOf([&] {
+                  make(replayConfig(kDataset, {"rawlog.plan_every_s=0"}));
+              }).find("plan_every_s"),
+              std::string::npos);
+    EXPECT_NE(inputErrorOf([&] {
+                  RawlogMission::selectedBy(
+                      ExperimentConfig::fromFile(kTinyRoom, {"experiment.source=camera"}));
+              }).find("source"),
+              std::string::npos);
+    EXPECT_FALSE(RawlogMission::selectedBy(ExperimentConfig::fromFile(kTinyRoom)));
+}
+
+/** A rawlog cut short fails while replaying, naming the file; the outputs so far are kept. */
+TEST(RawlogSource, TruncatedRawlogIsAnErrorNamingTheFile) {
+    const fs::path dir = freshDir("truncated");
+    const std::string bytes = readBytes(kDataset);
+    const std::string cut = (dir / "cut.rawlog").string();
+    std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    RawlogMission mission(replayConfig(cut, {"rawlog.world=tiny_room.yaml"}), dir / "out", nullptr);
+    const std::string e = inputErrorOf([&] { mission.run(); });
+    EXPECT_NE(e.find(cut), std::string::npos) << e;
+    EXPECT_GT(mission.frames(), 10u);
+    EXPECT_TRUE(fs::exists(dir / "out" / "summary.json"));
+}
+
+}  // namespace
