@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "daep/common/Error.h"
+#include "daep/common/IniText.h"
 
 namespace daep::world {
 namespace {
@@ -17,15 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 using Pose = Eigen::Isometry3d;
-
-std::string readWholeFile(const std::string& path) {
-    std::ifstream f(path);
-    if (!f)
-        throw InputError(path + ": cannot open file");
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
 
 /** Parses XML text, throwing "<source>:<line>: XML error ..." when it is malformed. */
 void parseXml(tinyxml2::XMLDocument& doc, const std::string& text, const std::string& source) {
@@ -338,7 +330,7 @@ private:
         const std::string sdfPath = modelSdfPath(dir);
         tinyxml2::XMLDocument doc;
         const SdfFile sub{sdfPath, dir};
-        parseXml(doc, readWholeFile(sdfPath), sdfPath);
+        parseXml(doc, readTextFile(sdfPath), sdfPath);
         const XMLElement* root = doc.RootElement();
         const XMLElement* model = root ? root->FirstChildElement("model") : nullptr;
         if (!model)
@@ -361,7 +353,7 @@ private:
         const fs::path config = fs::path(dir) / "model.config";
         if (fs::exists(config)) {
             tinyxml2::XMLDocument doc;
-            parseXml(doc, readWholeFile(config.string()), config.string());
+            parseXml(doc, readTextFile(config.string()), config.string());
             const XMLElement* root = doc.RootElement();
             const XMLElement* sdf = root ? root->FirstChildElement("sdf") : nullptr;
             if (sdf && sdf->GetText()) {
@@ -501,7 +493,7 @@ ImportedWorld importSdfText(const std::string& text, const std::string& sourceNa
 
 ImportedWorld importGazeboWorld(const std::string& worldFile, const GazeboImportOptions& options) {
     const std::string dir = fs::absolute(worldFile).parent_path().string();
-    ImportedWorld w = importSdfText(readWholeFile(worldFile), worldFile, dir, options);
+    ImportedWorld w = importSdfText(readTextFile(worldFile), worldFile, dir, options);
     w.name = options.name.empty() ? fs::path(worldFile).stem().string() : options.name;
     if (!options.peopleFile.empty())
         w.people = readLaunchPeople(options.peopleFile);
@@ -516,7 +508,7 @@ ImportedWorld importGazeboWorld(const std::string& worldFile, const GazeboImport
 
 std::vector<PersonRoute> readLaunchPeople(const std::string& launchFile) {
     tinyxml2::XMLDocument doc;
-    parseXml(doc, readWholeFile(launchFile), launchFile);
+    parseXml(doc, readTextFile(launchFile), launchFile);
     std::vector<PersonRoute> people;
     const XMLElement* root = doc.RootElement();
     for (auto* n = root ? root->FirstChildElement("node") : nullptr; n;
@@ -536,7 +528,7 @@ std::vector<PersonRoute> readLaunchPeople(const std::string& launchFile) {
 }
 
 void readExplorationBoundary(const std::string& yamlFile, Aabb& box, double& volume) {
-    const std::string text = readWholeFile(yamlFile);
+    const std::string text = readTextFile(yamlFile);
     std::string minText, maxText, volumeText;
     if (!yamlValue(text, "boundary/min", minText) || !yamlValue(text, "boundary/max", maxText))
         throw InputError(yamlFile + ": boundary/min and boundary/max are required");
@@ -556,7 +548,7 @@ void readExplorationBoundary(const std::string& yamlFile, Aabb& box, double& vol
 
 std::vector<Eigen::Vector3d> readSpawnPositions(const std::string& yamlFile,
                                                 const std::string& key) {
-    std::istringstream in(readWholeFile(yamlFile));
+    std::istringstream in(readTextFile(yamlFile));
     std::string line;
     bool inSection = false, inKey = false;
     std::vector<Eigen::Vector3d> out;
