@@ -138,7 +138,7 @@ int benchmark(const Options& o) {
     std::cout << config.expand().size() << " runs (" << config.planners.size() << " planners x "
               << config.worlds.size() << " worlds x " << config.modes.size() << " modes x "
               << config.starts.size() << " starts x " << config.repetitions << " repetitions), "
-              << ro.jobs << " at a time, into " << ro.outDirectory << "\n";
+              << ro.jobs << " at a time, into " << ro.outDirectory << std::endl;
     const auto report = runner.run(std::cout);
     aggregate(ro.outDirectory, config.planners);
     if (report.interrupted) {

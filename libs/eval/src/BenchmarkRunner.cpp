@@ -139,7 +139,7 @@ public:
         if (!interactive_ || !ok)
             out_ << (ok ? "done   " : "FAILED ") << id << " (" << clockText(seconds) << ")"
                  << (detail.empty() ? "" : ", " + detail) << "  [" << done_ << "/" << total_
-                 << ", failed " << failed_ << ", ETA " << eta() << "]\n";
+                 << ", failed " << failed_ << ", ETA " << eta() << "]" << std::endl;
         draw();
     }
 
