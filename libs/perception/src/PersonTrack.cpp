@@ -25,9 +25,10 @@ public:
         m_pkk(2, 2) = m_pkk(3, 3) = v;
     }
 
-    void step(double dt, const Eigen::Vector2d& measured) {
+    void step(double dt, const Eigen::Vector2d& measured, const Eigen::Matrix2d& r) {
         dt_ = dt;
         measured_ = measured;
+        r_ = r;
         runOneKalmanIteration();
     }
 
@@ -64,9 +65,9 @@ protected:
     }
 
     void OnGetObservationNoise(KFMatrix_OxO& R) const override {
-        const double r = params_.measurementSigma * params_.measurementSigma;
-        R(0, 0) = R(1, 1) = r;
-        R(0, 1) = R(1, 0) = 0.0;
+        for (int r = 0; r < 2; ++r)
+            for (int c = 0; c < 2; ++c)
+                R(r, c) = r_(r, c);
     }
 
     void OnGetObservationsAndDataAssociation(vector_KFArray_OBS& z, std::vector<int>& assoc,
@@ -95,6 +96,7 @@ private:
     PredictorParams params_;
     double dt_ = 0.0;
     Eigen::Vector2d measured_ = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d r_ = Eigen::Matrix2d::Identity();
 };
 
 Eigen::Matrix4d PersonTrack::transition(double dt) {
@@ -126,22 +128,43 @@ PersonTrack::PersonTrack(PersonTrack&&) noexcept = default;
 PersonTrack& PersonTrack::operator=(PersonTrack&&) noexcept = default;
 
 void PersonTrack::update(double time, const Eigen::Vector2d& measured) {
+    const double r = params_.measurementSigma * params_.measurementSigma;
+    update(time, measured, Eigen::Matrix2d::Identity() * r);
+}
+
+void PersonTrack::update(double time, const Eigen::Vector2d& measured,
+                         const Eigen::Matrix2d& measurementCovariance) {
     if (time < time_)
         throw std::invalid_argument("PersonTrack::update: time goes backwards");
-    filter_->step(time - time_, measured);
+    filter_->step(time - time_, measured, measurementCovariance);
     time_ = time;
 }
 
+PersonForecast PersonTrack::forecast(int id) const {
+    PersonForecast f;
+    f.id = id;
+    f.time = time_;
+    f.state = filter_->mean();
+    f.covariance = filter_->cov();
+    f.accelNoise = params_.accelNoise;
+    return f;
+}
+
 PositionPrediction PersonTrack::predict(double time) const {
-    const double dt = std::max(0.0, time - time_);
-    const Eigen::Matrix4d f = transition(dt);
-    const Eigen::Vector4d x = f * filter_->mean();
-    const Eigen::Matrix4d p =
-        f * filter_->cov() * f.transpose() + processNoise(params_.accelNoise, dt);
+    return forecast(-1).at(time);
+}
+
+PositionPrediction PersonForecast::at(double t) const {
+    // Closed form of F P F^T + Q(dt) for the position block of the constant-velocity model.
+    const double dt = std::max(0.0, t - time);
     PositionPrediction out;
-    out.time = time;
-    out.mean = x.head<2>();
-    out.covariance = p.topLeftCorner<2, 2>();
+    out.time = t;
+    out.mean = state.head<2>() + dt * state.tail<2>();
+    const Eigen::Matrix2d pp = covariance.topLeftCorner<2, 2>();
+    const Eigen::Matrix2d pv = covariance.topRightCorner<2, 2>();
+    const Eigen::Matrix2d vv = covariance.bottomRightCorner<2, 2>();
+    out.covariance = pp + dt * (pv + pv.transpose()) + dt * dt * vv +
+                     Eigen::Matrix2d::Identity() * (accelNoise * dt * dt * dt / 3.0);
     return out;
 }
 

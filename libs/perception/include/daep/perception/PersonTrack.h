@@ -27,6 +27,22 @@ struct PositionPrediction {
 };
 
 /**
+ * A copy of one track's filter state that predicts in closed form: small, cheap to copy, and
+ * what planners see of a person (they never touch the filter itself).
+ */
+struct PersonForecast {
+    int id = -1;
+    double time = 0.0;  ///< time of the state
+    Eigen::Vector4d state = Eigen::Vector4d::Zero();       ///< [x y vx vy]
+    Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();  ///< of the state
+    double accelNoise = 0.0;  ///< spectral density of the white-noise acceleration
+
+    /** Position distribution at `t` (clamped to >= time): the CV model's prediction. */
+    PositionPrediction at(double t) const;
+    Eigen::Vector2d velocity() const { return state.tail<2>(); }
+};
+
+/**
  * One person's constant-velocity Kalman filter, state [x y vx vy], kept across measurements
  * (it is built on mrpt::bayes::CKalmanFilterCapable). predict() gives the position
  * distribution at any later time in closed form; its covariance grows with the horizon.
@@ -40,6 +56,12 @@ public:
 
     /** Propagates to `time` (>= lastUpdate()) and corrects with a measured position. */
     void update(double time, const Eigen::Vector2d& measured);
+    /** The same with the measurement's own covariance instead of params().measurementSigma. */
+    void update(double time, const Eigen::Vector2d& measured,
+                const Eigen::Matrix2d& measurementCovariance);
+
+    /** The filter state as a closed-form forecast, labelled with `id`. */
+    PersonForecast forecast(int id) const;
 
     /** Position distribution at `time` (>= lastUpdate()), without changing the track. */
     PositionPrediction predict(double time) const;
