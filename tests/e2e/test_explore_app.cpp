@@ -177,6 +177,9 @@ std::vector<BadInputCase> badInputCases() {
     cases.push_back(
         {"bad_mode", kTinyIni + " --set experiment.mode=chaos", {"mode", "static", "dynamic"}});
     cases.push_back({"bad_number", kTinyIni + " --set camera.rate_hz=fast", {"[camera] rate_hz"}});
+    cases.push_back({"bad_people_source",
+                     kTinyIni + " --set tracking.people_source=psychic",
+                     {"[tracking] people_source", "psychic", "ground_truth", "sensed"}});
     cases.push_back(
         {"start_out_of_range", kTinyIni + " --set experiment.start=9", {"start", "0..4"}});
     cases.push_back({"missing_file", "/nonexistent/exp.ini", {"/nonexistent/exp.ini"}});

@@ -64,7 +64,7 @@ RunRecorder::RunRecorder(const std::string& directory, PlansFormat plans) : dire
     trajectory_ = openForWriting(path("trajectory.csv"), "sim_time,x,y,z,yaw\n");
     plans_ = openForWriting(path("plans.csv"),
                             plans == PlansFormat::Flight
-                                ? "t,charged_s,status,gain,waypoints\n"
+                                ? "t,charged_s,status,gain,waypoints,reason\n"
                                 : "t,x,y,z,yaw,status,gain,waypoints,wp_x,wp_y,wp_z,wp_yaw,safe,"
                                   "plan_ms\n");
 }
@@ -91,11 +91,14 @@ void RunRecorder::addPose(double time, const FlatPose& p) {
 }
 
 void RunRecorder::addPlan(double time, double chargedSec, double wallSec, const std::string& status,
-                          double gain, int waypoints) {
+                          double gain, int waypoints, const std::string& reason) {
     chargedPlanTimes_.push_back(chargedSec);
     wallPlanTimes_.push_back(wallSec);
-    std::fprintf(plans_, "%.3f,%.6f,%s,%.4f,%d\n", time, chargedSec, status.c_str(), gain,
-                 waypoints);
+    std::string quoted;
+    for (const char c : reason)
+        quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    std::fprintf(plans_, "%.3f,%.6f,%s,%.4f,%d,\"%s\"\n", time, chargedSec, status.c_str(), gain,
+                 waypoints, quoted.c_str());
 }
 
 void RunRecorder::addReplayPlan(const ReplayPlanRecord& r) {

@@ -21,6 +21,7 @@
 #include "daep/eval/Statistics.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
+#include "daep/mission/PeopleInput.h"
 #include "daep/planning/Planner.h"
 #include "daep/sim/CollisionMonitor.h"
 #include "daep/sim/DepthCamera.h"
@@ -40,6 +41,12 @@ constexpr double kEps = 1e-9;
 
 double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+const char* statusName(const planning::Plan& plan) {
+    if (plan.status == planning::Plan::Status::Finished)
+        return "finished";
+    return plan.waypoints.empty() && plan.waitSeconds > 0 ? "wait" : "path";
 }
 
 std::string formatPoint(const Eigen::Vector3d& p) {
@@ -66,6 +73,8 @@ struct Mission::Impl {
           planner(planning::createPlanner(settings.plannerName, config.config(),
                                           settings.seed * 0x9E3779B97F4A7C15ull + 1)),
           noiseRng(settings.seed),
+          peopleInput(PeopleInputParams::fromConfig(config.config()),
+                      settings.seed * 0xD1B54A32D192ED03ull + 7),
           log(logStream),
           recorder(outputDir),
           outputs(loadOutputParams(config.config())),
@@ -116,6 +125,9 @@ struct Mission::Impl {
             caster.setPeople(people.states(), people.params().bodySize);
         camera.render(caster, drone.pose(), t, noiseRng, frame);
         map.insertObservation(frame, drone.pose());
+        if (planner->usesPeople())
+            peopleInput.observe(t, people.states(), caster, camera.sensorPose(drone.pose()),
+                                camera.params(), people.params().bodySize);
         recorder.addPose(t, drone.pose());
         if (rawlog)
             rawlog->addFrame(frame, t, drone.pose(), people.states(), people.params().bodySize);
@@ -203,7 +215,8 @@ struct Mission::Impl {
         while (drone.hasGoal() && !stopping() && !aborted) {
             const std::uint64_t mapBefore = map.revision();
             advance(framePeriod, true);
-            if (plan && drone.hasGoal() && map.revision() != mapBefore)
+            const bool recheck = map.revision() != mapBefore || planner->usesPeople();
+            if (plan && drone.hasGoal() && recheck)
                 aborted = !planner->keepFlying(context(), *plan, index);
         }
         drone.clearGoal();
@@ -230,6 +243,10 @@ struct Mission::Impl {
         ctx.explorationBox = world.explorationBox;
         ctx.motion.speed = drone.params().speed;
         ctx.motion.yawRate = drone.params().yawRate;
+        ctx.droneSize = drone.params().boxSize;
+        ctx.personSize = people.params().bodySize;
+        if (planner->usesPeople())
+            ctx.people = &peopleInput.forecasts();
         return ctx;
     }
 
@@ -243,9 +260,8 @@ struct Mission::Impl {
         const double charged = settings.planningTime == "fixed" ? settings.planningFixed : wall;
         ++iterations;
         planningCharged += charged;
-        recorder.addPlan(explorationTime(), charged, wall,
-                         plan.status == planning::Plan::Status::Finished ? "finished" : "path",
-                         plan.gain, static_cast<int>(plan.waypoints.size()));
+        recorder.addPlan(explorationTime(), charged, wall, statusName(plan), plan.gain,
+                         static_cast<int>(plan.waypoints.size()), plan.reason);
         advance(charged, false);  // hover while planning: people keep walking
         return plan;
     }
@@ -258,6 +274,10 @@ struct Mission::Impl {
                 finished = true;
                 endReason = "planner finished: " + plan.reason;
                 return;
+            }
+            if (plan.waypoints.empty() && plan.waitSeconds > 0) {
+                advance(plan.waitSeconds, false);  // the planner waits for people to pass
+                continue;
             }
             if (plan.waypoints.empty()) {
                 if (++failedPlans >= settings.maxFailedPlans) {
@@ -322,6 +342,7 @@ struct Mission::Impl {
     mapping::ExplorationMap map;
     std::unique_ptr<planning::ExplorationPlanner> planner;
     std::mt19937_64 noiseRng;
+    PeopleInput peopleInput;
     std::ostream* log;
     eval::RunRecorder recorder;
     mrpt::obs::CObservation3DRangeScan frame;

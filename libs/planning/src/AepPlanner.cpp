@@ -26,8 +26,9 @@ double headingOf(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double 
 
 }  // namespace
 
-AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
-    const ConfigReader r(config, "aep");
+AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
+                                const std::string& section) {
+    const ConfigReader r(config, section);
     AepParams p;
     p.extensionRange = requirePositive(r, "extension_range");
     p.samplingRadius = requirePositive(r, "max_sampling_radius");
@@ -131,12 +132,40 @@ void AepPlanner::setParent(int node, int parent) {
     tree_.node(node).parent = parent;
 }
 
+YawGain AepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& p, double arrival,
+                           bool rayCast) {
+    (void)arrival;
+    if (!rayCast)
+        return evaluateGain(*context.map, p);
+    ++stats_.rayCasts;
+    return gain_.bestYaw(*context.map, p);
+}
+
+bool AepPlanner::moveSafe(const FlatPose& from, double start, const FlatPose& to) const {
+    (void)from;
+    (void)start;
+    (void)to;
+    return true;
+}
+
+bool AepPlanner::moveSafeFrom(int parent, const FlatPose& to) const {
+    const TreeNode& n = tree_.node(parent);
+    return moveSafe({n.position, n.yaw}, n.time, to);
+}
+
+double AepPlanner::branchValue(double parentValue, double gain, double edge,
+                               const Eigen::Vector3d& p) const {
+    (void)p;
+    return parentValue + gain * std::exp(-params_.lambda * edge);
+}
+
 void AepPlanner::propagate(int node) {
     TreeNode& n = tree_.node(node);
     const TreeNode& parent = tree_.node(n.parent);
     const double edge = (n.position - parent.position).norm();
     n.cost = parent.cost + edge;
-    n.score = parent.score + n.gain * std::exp(-params_.lambda * edge);
+    n.time = parent.time + motion_.travelTime({parent.position, parent.yaw}, {n.position, n.yaw});
+    n.score = branchValue(parent.score, n.gain, edge, n.position);
     for (int child : children_[static_cast<std::size_t>(node)])
         propagate(child);
 }
@@ -162,24 +191,35 @@ int AepPlanner::extend(const PlanningContext& context, const Eigen::Vector3d& sa
             candidates.emplace_back(tree_.node(i).cost + d, i);
     }
     std::sort(candidates.begin(), candidates.end());
+    std::size_t first = 0;
+    while (first < candidates.size() && !edgeValid(context, candidates[first].second, p))
+        ++first;
+    if (first == candidates.size())
+        return -1;
+    // The view depends on the arrival time (people may stand in the way then); the cheapest
+    // statically valid parent gives the estimate, the turn to the view's yaw comes after.
+    const TreeNode& cheapest = tree_.node(candidates[first].second);
+    const YawGain view =
+        globalTree_ ? YawGain{headingOf(cheapest.position, p, cheapest.yaw), 0.0}
+                    : viewAt(context, p,
+                             cheapest.time + (p - cheapest.position).norm() / motion_.speed, false);
     int parent = -1;
-    for (const auto& [cost, i] : candidates) {
-        if (edgeValid(context, i, p)) {
+    for (std::size_t k = first; k < candidates.size() && parent < 0; ++k) {
+        const int i = candidates[k].second;
+        if ((k == first || edgeValid(context, i, p)) && moveSafeFrom(i, {p, view.yaw}))
             parent = i;
-            break;
-        }
     }
     if (parent < 0)
         return -1;
-    const YawGain view = globalTree_ ? YawGain{} : evaluateGain(*context.map, p);
     const int added = addNode(parent, p, view);
     for (const auto& [cost, q] : candidates) {
         (void)cost;
         if (q == 0 || q == parent)
             continue;
-        const double through = tree_.node(added).cost + (tree_.node(q).position - p).norm();
-        if (through < tree_.node(q).cost - 1e-9 &&
-            edgeValid(context, added, tree_.node(q).position)) {
+        const TreeNode& other = tree_.node(q);
+        const double through = tree_.node(added).cost + (other.position - p).norm();
+        if (through < other.cost - 1e-9 && edgeValid(context, added, other.position) &&
+            moveSafeFrom(added, {other.position, other.yaw})) {
             setParent(q, added);
             propagate(q);
         }
@@ -189,6 +229,7 @@ int AepPlanner::extend(const PlanningContext& context, const Eigen::Vector3d& sa
 
 void AepPlanner::resetTree(const PlanningContext& context) {
     tree_.reset(context.pose);
+    tree_.node(0).time = context.time;
     children_.assign(1, {});
     best_ = -1;
 }
@@ -198,8 +239,12 @@ void AepPlanner::reinsertPreviousBranch(const PlanningContext& context) {
     for (const FlatPose& pose : previousBranch_) {
         if (!samplingBox_.contains(pose.position) || !edgeValid(context, parent, pose.position))
             break;
-        ++stats_.rayCasts;
-        parent = addNode(parent, pose.position, gain_.bestYaw(*context.map, pose.position));
+        const TreeNode& from = tree_.node(parent);
+        const double arrival = from.time + (pose.position - from.position).norm() / motion_.speed;
+        const YawGain view = viewAt(context, pose.position, arrival, true);
+        if (!moveSafeFrom(parent, {pose.position, view.yaw}))
+            break;
+        parent = addNode(parent, pose.position, view);
     }
     previousBranch_.clear();
 }
@@ -244,6 +289,7 @@ Plan AepPlanner::plan(const PlanningContext& context) {
     if (context.map == nullptr)
         throw std::invalid_argument("AepPlanner::plan: no map");
     stats_ = {};
+    motion_ = context.motion;
     samplingBox_ = shrink(context.explorationBox, params_.robotRadius);
     rootFree_ = context.map->isSegmentFree(context.pose.position, context.pose.position,
                                            params_.robotRadius);
@@ -367,8 +413,14 @@ std::vector<Eigen::Vector3d> AepPlanner::shortcut(const PlanningContext& context
                                                   const std::vector<Eigen::Vector3d>& path) const {
     const mapping::ExplorationMap& map = *context.map;
     const double r = params_.robotRadius;
+    FlatPose at = context.pose;
+    double time = context.time;
+    auto headingTo = [&](std::size_t b) {
+        return FlatPose{path[b], headingOf(at.position, path[b], at.yaw)};
+    };
     auto clear = [&](std::size_t a, std::size_t b) {
-        return segmentFlyable(map, path[a], path[b], r, a == 0 && !rootFree_);
+        return segmentFlyable(map, path[a], path[b], r, a == 0 && !rootFree_) &&
+               moveSafe(at, time, headingTo(b));
     };
     std::vector<Eigen::Vector3d> out{path.front()};
     std::size_t a = 0;
@@ -377,6 +429,9 @@ std::vector<Eigen::Vector3d> AepPlanner::shortcut(const PlanningContext& context
         while (b > a + 1 && !clear(a, b))
             --b;
         out.push_back(path[b]);
+        const FlatPose next = headingTo(b);
+        time += motion_.travelTime(at, next);
+        at = next;
         a = b;
     }
     return out;

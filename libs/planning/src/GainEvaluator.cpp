@@ -60,22 +60,72 @@ GainEvaluator::GainEvaluator(const GainParams& params) : params_(params) {
     cubature_ = RayCubature(params, centres);
 }
 
+double rayEntry(const BodyOccluder& body, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    double lo = 0.0, hi = kInf;
+    // Height slab z in [0, height].
+    if (std::abs(dir.z()) < 1e-12) {
+        if (o.z() < 0.0 || o.z() > body.height)
+            return kInf;
+    } else {
+        double a = (0.0 - o.z()) / dir.z(), b = (body.height - o.z()) / dir.z();
+        if (a > b)
+            std::swap(a, b);
+        lo = std::max(lo, a);
+        hi = std::min(hi, b);
+    }
+    // Disc in x/y: |o + t d - c|^2 <= r^2.
+    const Eigen::Vector2d m = o.head<2>() - body.center;
+    const Eigen::Vector2d d = dir.head<2>();
+    const double a = d.squaredNorm();
+    const double c = m.squaredNorm() - body.radius * body.radius;
+    if (a < 1e-12) {
+        if (c > 0.0)
+            return kInf;
+    } else {
+        const double b = m.dot(d);
+        const double disc = b * b - a * c;
+        if (disc < 0.0)
+            return kInf;
+        const double root = std::sqrt(disc);
+        lo = std::max(lo, (-b - root) / a);
+        hi = std::min(hi, (-b + root) / a);
+    }
+    return lo <= hi ? lo : kInf;
+}
+
+void GainEvaluator::setBorderBoost(double alpha, double distance) {
+    boostAlpha_ = alpha;
+    boostDistance_ = distance;
+}
+
+double GainEvaluator::sampleWeight(const Aabb& box, const Eigen::Vector3d& s) const {
+    const double toFace = std::min(
+        {s.x() - box.min.x(), box.max.x() - s.x(), s.y() - box.min.y(), box.max.y() - s.y()});
+    return toFace < boostDistance_ ? boostAlpha_ : 1.0;
+}
+
 double GainEvaluator::columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
-                                 int column) const {
+                                 int column, const std::vector<BodyOccluder>* occluders) const {
     const Aabb& box = map.explorationBox();
     if (!box.contains(p))
         return 0.0;
+    const bool boosted = boostAlpha_ != 1.0 && boostDistance_ > 0.0;
     double gain = 0.0;
     for (int j = 0; j < cubature_.rings; ++j) {
         const Eigen::Vector3d& dir = cubature_.directions[column * cubature_.rings + j];
-        const double exit = exitDistance(box, p, dir);
+        double end = exitDistance(box, p, dir);
+        if (occluders)
+            for (const BodyOccluder& body : *occluders)
+                end = std::min(end, rayEntry(body, p, dir));
         double ray = 0.0;
-        for (std::size_t k = 0; k < cubature_.radii.size() && cubature_.radii[k] <= exit; ++k) {
-            const mapping::CellState s = map.state(p + cubature_.radii[k] * dir);
-            if (s == mapping::CellState::Occupied)
+        for (std::size_t k = 0; k < cubature_.radii.size() && cubature_.radii[k] <= end; ++k) {
+            const Eigen::Vector3d s = p + cubature_.radii[k] * dir;
+            const mapping::CellState state = map.state(s);
+            if (state == mapping::CellState::Occupied)
                 break;
-            if (s == mapping::CellState::Unknown)
-                ray += cubature_.shellWeights[k];
+            if (state == mapping::CellState::Unknown)
+                ray += cubature_.shellWeights[k] * (boosted ? sampleWeight(box, s) : 1.0);
         }
         gain += cubature_.ringWeights[j] * ray;
     }
@@ -83,10 +133,11 @@ double GainEvaluator::columnGain(const mapping::ExplorationMap& map, const Eigen
 }
 
 std::vector<double> GainEvaluator::columns(const mapping::ExplorationMap& map,
-                                           const Eigen::Vector3d& p) const {
+                                           const Eigen::Vector3d& p,
+                                           const std::vector<BodyOccluder>* occluders) const {
     std::vector<double> result(columns_);
     for (int i = 0; i < columns_; ++i)
-        result[i] = columnGain(map, p, i);
+        result[i] = columnGain(map, p, i, occluders);
     return result;
 }
 
@@ -129,8 +180,9 @@ YawGain GainEvaluator::bestYaw(const std::vector<double>& columns) const {
     return best;
 }
 
-YawGain GainEvaluator::bestYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) const {
-    return bestYaw(columns(map, p));
+YawGain GainEvaluator::bestYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+                               const std::vector<BodyOccluder>* occluders) const {
+    return bestYaw(columns(map, p, occluders));
 }
 
 }  // namespace daep::planning

@@ -5,6 +5,7 @@
 
 #include "daep/common/Error.h"
 #include "daep/planning/AepPlanner.h"
+#include "daep/planning/DaepPlanner.h"
 #include "daep/planning/DepPlanner.h"
 #include "daep/planning/RhNbvpPlanner.h"
 
@@ -33,6 +34,7 @@ std::unique_ptr<ExplorationPlanner> make(const mrpt::config::CConfigFileBase& co
 const std::vector<std::pair<std::string, PlannerFactory>>& factories() {
     static const std::vector<std::pair<std::string, PlannerFactory>> table = {
         {"aep", &make<AepPlanner, AepParams>},
+        {"daep", &make<DaepPlanner, DaepParams>},
         {"dep", &make<DepPlanner, DepParams>},
         {"rhnbvp", &make<RhNbvpPlanner, RhNbvpParams>},
     };

@@ -109,6 +109,8 @@ struct RayCaster::Impl {
     RTCScene scene = nullptr;
     RTCGeometry people = nullptr;
     std::size_t peopleCount = 0;
+    unsigned peopleGeomId = RTC_INVALID_GEOMETRY_ID;
+    std::size_t trianglesPerPerson = 0;
     bool packets16 = false;
 
     ~Impl() {
@@ -194,11 +196,12 @@ void RayCaster::setPeople(const std::vector<PersonState>& people, const Eigen::V
         if (d.people == nullptr) {
             d.people = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_TRIANGLE);
             rtcSetGeometryBuildQuality(d.people, RTC_BUILD_QUALITY_LOW);
-            rtcAttachGeometry(d.scene, d.people);
+            d.peopleGeomId = rtcAttachGeometry(d.scene, d.people);
         }
         if (people.size() != d.peopleCount) {
             setTriangles(d.people, soup);
             d.peopleCount = people.size();
+            d.trianglesPerPerson = soup.triangles.size() / people.size();
         } else {
             auto* v =
                 static_cast<float*>(rtcGetGeometryBufferData(d.people, RTC_BUFFER_TYPE_VERTEX, 0));
@@ -214,8 +217,10 @@ void RayCaster::setPeople(const std::vector<PersonState>& people, const Eigen::V
     d.check("moving the people");
 }
 
-float RayCaster::castRay(const Eigen::Vector3f& origin, const Eigen::Vector3f& unitDir,
-                         float maxRange) const {
+namespace {
+
+RTCRayHit castOne(RTCScene scene, const Eigen::Vector3f& origin, const Eigen::Vector3f& unitDir,
+                  float maxRange) {
     RTCRayHit rh;
     rh.ray.org_x = origin.x();
     rh.ray.org_y = origin.y();
@@ -233,8 +238,25 @@ float RayCaster::castRay(const Eigen::Vector3f& origin, const Eigen::Vector3f& u
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    rtcIntersect1(impl_->scene, &context, &rh);
+    rtcIntersect1(scene, &context, &rh);
+    return rh;
+}
+
+}  // namespace
+
+float RayCaster::castRay(const Eigen::Vector3f& origin, const Eigen::Vector3f& unitDir,
+                         float maxRange) const {
+    const RTCRayHit rh = castOne(impl_->scene, origin, unitDir, maxRange);
     return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? kInf : rh.ray.tfar;
+}
+
+int RayCaster::firstPersonHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& unitDir,
+                              float maxRange) const {
+    const RTCRayHit rh = castOne(impl_->scene, origin, unitDir, maxRange);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.geomID != impl_->peopleGeomId ||
+        impl_->trianglesPerPerson == 0)
+        return -1;
+    return static_cast<int>(rh.hit.primID / impl_->trianglesPerPerson);
 }
 
 void RayCaster::castRays(const Eigen::Vector3f& origin,

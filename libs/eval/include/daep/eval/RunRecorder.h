@@ -75,7 +75,7 @@ public:
     void addPose(double simTime, const FlatPose& pose);
     /** One planner call: when, how long it was charged, its real duration, its outcome. */
     void addPlan(double time, double chargedSec, double wallSec, const std::string& status,
-                 double gain, int waypoints);
+                 double gain, int waypoints, const std::string& reason = "");
     /** One planner call of a replay (PlansFormat::Replay); its real time counts as charged. */
     void addReplayPlan(const ReplayPlanRecord& plan);
     void addCollision(int personIndex, double start, double end);

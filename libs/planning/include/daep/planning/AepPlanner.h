@@ -37,8 +37,9 @@ struct AepParams {
     int globalPlannerCounter = 25;
     double robotRadius = 0.3;
 
-    /** Reads and validates the keys; throws InputError naming the bad key. */
-    static AepParams fromConfig(const mrpt::config::CConfigFileBase& config);
+    /** Reads and validates the keys of `section`; throws InputError naming the bad key. */
+    static AepParams fromConfig(const mrpt::config::CConfigFileBase& config,
+                                const std::string& section = "aep");
 };
 
 /** Counters of the last plan() call, for tests and benchmarks. */
@@ -88,6 +89,26 @@ public:
     /** Re-casts cached viewpoints near the places flown since the last call; drops weak ones. */
     void refreshCache(const mapping::ExplorationMap& map, const Eigen::Vector3d& pose);
 
+protected:
+    // Hooks through which DAEP makes the same trees aware of moving people.
+
+    /**
+     * The view at p for a drone arriving at `arrival` (AEP: the static gain, from the cache's
+     * GP where it is confident unless `rayCast`).
+     */
+    virtual YawGain viewAt(const PlanningContext& context, const Eigen::Vector3d& p, double arrival,
+                           bool rayCast);
+    /** Whether turning then flying from `from` at `start` to `to` is safe (AEP: always). */
+    virtual bool moveSafe(const FlatPose& from, double start, const FlatPose& to) const;
+    /** moveSafe from tree node `parent` at its arrival time. */
+    bool moveSafeFrom(int parent, const FlatPose& to) const;
+    /** A node's value from its parent's: AEP adds gain * exp(-lambda * edge). */
+    virtual double branchValue(double parentValue, double gain, double edge,
+                               const Eigen::Vector3d& p) const;
+    GainEvaluator& gainEvaluator() { return gain_; }
+    const MotionLimits& motion() const { return motion_; }
+    AepStats& mutableStats() { return stats_; }
+
 private:
     bool edgeValid(const PlanningContext& context, int parent, const Eigen::Vector3d& to) const;
     Eigen::Vector3d sampleLocal(const Eigen::Vector3d& center);
@@ -115,6 +136,7 @@ private:
                   double finalYaw) const;
 
     AepParams params_;
+    MotionLimits motion_;
     GainEvaluator gain_;
     GaussianProcess gp_;
     GainCache cache_;

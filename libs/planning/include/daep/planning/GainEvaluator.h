@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "daep/common/Types.h"
+
 namespace mrpt::config {
 class CConfigFileBase;
 }
@@ -44,6 +46,16 @@ struct RayCubature {
     std::vector<double> shellWeights;         ///< r^2 dr + dr^3 / 12 per shell
 };
 
+/** Something that blocks rays besides the map: a person's body as a vertical cylinder. */
+struct BodyOccluder {
+    Eigen::Vector2d center = Eigen::Vector2d::Zero();
+    double radius = 0.5;
+    double height = 1.8;  ///< spans z in [0, height]
+};
+
+/** Distance along the unit ray from o to where it enters the body (0 inside, +inf never). */
+double rayEntry(const BodyOccluder& body, const Eigen::Vector3d& o, const Eigen::Vector3d& dir);
+
 /** A heading and the unknown volume (m^3) seen with the camera at that heading. */
 struct YawGain {
     double yaw = 0.0;
@@ -70,15 +82,26 @@ class GainEvaluator {
 public:
     explicit GainEvaluator(const GainParams& params);
 
-    /** Unknown volume per azimuth column (column i spans [i, i+1] * columnWidth()). */
-    std::vector<double> columns(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) const;
+    /**
+     * Unknown volume per azimuth column (column i spans [i, i+1] * columnWidth()). With
+     * occluders, rays stop where they enter a body: the dynamic gain of DAEP.
+     */
+    std::vector<double> columns(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+                                const std::vector<BodyOccluder>* occluders = nullptr) const;
+
+    /**
+     * DAEP's border boost: unknown samples within `distance` of an x or y face of the
+     * exploration box count `alpha` times (alpha = 1: off, the default).
+     */
+    void setBorderBoost(double alpha, double distance);
 
     /** Gain seen at heading `yaw`; evaluates only the columns inside the field of view. */
     double gainAtYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
                      double yaw) const;
 
     /** The heading with the largest gain (first maximum of the 1 degree sweep). */
-    YawGain bestYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) const;
+    YawGain bestYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+                    const std::vector<BodyOccluder>* occluders = nullptr) const;
 
     /** Field-of-view window over precomputed columns. */
     double windowGain(const std::vector<double>& columns, double yaw) const;
@@ -92,8 +115,9 @@ public:
     double phiMax() const { return cubature_.phiMax; }
 
 private:
-    double columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
-                      int column) const;
+    double columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
+                      const std::vector<BodyOccluder>* occluders = nullptr) const;
+    double sampleWeight(const Aabb& box, const Eigen::Vector3d& s) const;
     template <class ColumnFn>
     double window(double yaw, const ColumnFn& columnGainOf) const;
 
@@ -101,6 +125,8 @@ private:
     int columns_ = 0;
     double columnWidth_ = 0.0;
     RayCubature cubature_;
+    double boostAlpha_ = 1.0;
+    double boostDistance_ = 0.0;
 };
 
 }  // namespace daep::planning

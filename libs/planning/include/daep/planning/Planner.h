@@ -14,6 +14,9 @@ class CConfigFileBase;
 namespace daep::mapping {
 class ExplorationMap;
 }
+namespace daep::perception {
+struct PersonForecast;
+}
 
 namespace daep::planning {
 
@@ -44,6 +47,8 @@ struct Plan {
     };
     Status status = Status::Finished;
     std::vector<Waypoint> waypoints;
+    /** With no waypoints: hover this long, then plan again (waiting for people to pass). */
+    double waitSeconds = 0.0;
     double gain = 0.0;   ///< gain of the chosen goal (m^3 of unknown volume)
     double score = 0.0;  ///< planner-specific value of the chosen branch
     std::string reason;  ///< short human-readable note (why finished, local/global, ...)
@@ -57,6 +62,10 @@ struct PlanningContext {
     const mapping::ExplorationMap* map = nullptr;
     Aabb explorationBox;
     MotionLimits motion;
+    /** People as tracked now (planners that usePeople()); null when there are none. */
+    const std::vector<perception::PersonForecast>* people = nullptr;
+    Eigen::Vector3d droneSize{0.4, 0.4, 0.1};
+    Eigen::Vector3d personSize{1.0, 1.0, 1.8};
 };
 
 /** One interface for RH-NBVP, AEP, DEP and DAEP. */
@@ -66,6 +75,12 @@ public:
     virtual std::string name() const = 0;
     /** Plans from the context's state. Deterministic for a given seed and input sequence. */
     virtual Plan plan(const PlanningContext& context) = 0;
+
+    /**
+     * Whether the planner looks at people (context.people). The mission then tracks them and
+     * asks keepFlying at every camera frame, not only when the map changed.
+     */
+    virtual bool usesPeople() const { return false; }
 
     /**
      * Asked while `plan` is flown, after every map update, with the index of the waypoint the

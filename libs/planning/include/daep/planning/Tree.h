@@ -17,6 +17,7 @@ struct TreeNode {
     double gain = 0.0;   ///< unknown volume seen from this node (m^3)
     double score = 0.0;  ///< planner-specific value
     double cost = 0.0;   ///< path length from the root (m)
+    double time = 0.0;   ///< expected arrival time (absolute, s): turn then fly from the parent
 };
 
 /** A rooted tree of viewpoints; nodes are only appended, so indices stay valid. */

@@ -27,6 +27,10 @@ public:
     float castRay(const Eigen::Vector3f& origin, const Eigen::Vector3f& unitDir,
                   float maxRange) const;
 
+    /** Index of the person the ray hits first within maxRange, or -1 (static geometry or none). */
+    int firstPersonHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& unitDir,
+                       float maxRange) const;
+
     /**
      * Casts many rays from one origin; out[i] = hit distance or +inf. Uses packets: this is
      * the depth camera's hot path.

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "daep/common/Types.h"
+#include "daep/perception/PeopleTracker.h"
+#include "daep/sim/DepthCamera.h"
+#include "daep/world/People.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+namespace daep::world {
+class RayCaster;
+}
+
+namespace daep::mission {
+
+/** Section [tracking]: where the planner's people come from and how they are tracked. */
+struct PeopleInputParams {
+    /** ground_truth: every person, exactly; sensed: only people the camera really sees. */
+    std::string source = "ground_truth";
+    double sensedRange = 5.0;        ///< m from the camera
+    double sensedNoiseSigma = 0.05;  ///< m, Gaussian on each sensed position
+    perception::TrackerParams tracker;
+
+    static PeopleInputParams fromConfig(const mrpt::config::CConfigFileBase& config);
+};
+
+/**
+ * The people a people-aware planner sees: at every camera frame, measurements from the
+ * chosen source go into one Kalman track per person (kept across frames), and forecasts()
+ * gives the tracks' closed-form predictions.
+ */
+class PeopleInput {
+public:
+    PeopleInput(const PeopleInputParams& params, std::uint64_t seed);
+
+    /** One frame at time t seen from the camera at `sensor` (x forward, z up). */
+    void observe(double t, const std::vector<world::PersonState>& truth,
+                 const world::RayCaster& scene, const FlatPose& sensor,
+                 const sim::CameraParams& camera, const Eigen::Vector3d& bodySize);
+
+    const std::vector<perception::PersonForecast>& forecasts() const { return forecasts_; }
+    long measurements() const { return measurements_; }
+
+    /**
+     * Whether the camera at `sensor` sees person `index`: some ray from it to a point of the
+     * body, inside the field of view and range, hits that person first.
+     */
+    static bool visible(const world::RayCaster& scene, const FlatPose& sensor,
+                        const sim::CameraParams& camera, double range,
+                        const world::PersonState& person, const Eigen::Vector3d& bodySize,
+                        int index);
+
+private:
+    PeopleInputParams params_;
+    perception::PeopleTracker tracker_;
+    std::mt19937_64 rng_;
+    std::vector<perception::PersonForecast> forecasts_;
+    long measurements_ = 0;
+};
+
+}  // namespace daep::mission

@@ -1,0 +1,105 @@
+#include "daep/mission/PeopleInput.h"
+
+#include <cmath>
+
+#include "daep/common/Config.h"
+#include "daep/common/Error.h"
+#include "daep/world/RayCaster.h"
+
+namespace daep::mission {
+namespace {
+
+double requirePositive(const ConfigReader& r, const std::string& key) {
+    const double v = r.requireDouble(key);
+    if (!(v > 0))
+        throw InputError("[" + r.section() + "] " + key + ": must be > 0");
+    return v;
+}
+
+/** Points of a body a camera may see: three heights, across the body as seen from the camera. */
+std::vector<Eigen::Vector3d> bodySamples(const world::PersonState& person,
+                                         const Eigen::Vector3d& bodySize,
+                                         const Eigen::Vector3d& camera) {
+    Eigen::Vector2d across = (person.position - camera.head<2>());
+    across = across.norm() > 1e-6 ? Eigen::Vector2d(-across.y(), across.x()).normalized()
+                                  : Eigen::Vector2d(1, 0);
+    std::vector<Eigen::Vector3d> points;
+    for (const double h : {0.25, 0.5, 0.8})
+        for (const double side : {-0.3, 0.0, 0.3}) {
+            const Eigen::Vector2d xy = person.position + side * bodySize.x() * across;
+            points.emplace_back(xy.x(), xy.y(), h * bodySize.z());
+        }
+    return points;
+}
+
+}  // namespace
+
+PeopleInputParams PeopleInputParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
+    const ConfigReader r(config, "tracking");
+    PeopleInputParams p;
+    p.source = r.requireString("people_source");
+    if (p.source != "ground_truth" && p.source != "sensed")
+        throw InputError("[tracking] people_source: '" + p.source +
+                         "' must be ground_truth or sensed");
+    p.sensedRange = requirePositive(r, "sensed_range");
+    p.sensedNoiseSigma = r.requireDouble("sensed_noise_sigma");
+    if (p.sensedNoiseSigma < 0)
+        throw InputError("[tracking] sensed_noise_sigma: must be >= 0");
+    p.tracker.predictor.accelNoise = requirePositive(r, "accel_noise");
+    p.tracker.predictor.measurementSigma = requirePositive(r, "measurement_sigma");
+    p.tracker.predictor.initialSpeedSigma = requirePositive(r, "initial_speed_sigma");
+    p.tracker.dropAfter = requirePositive(r, "drop_after_s");
+    return p;
+}
+
+PeopleInput::PeopleInput(const PeopleInputParams& params, std::uint64_t seed)
+    : params_(params), tracker_(params.tracker), rng_(seed) {}
+
+bool PeopleInput::visible(const world::RayCaster& scene, const FlatPose& sensor,
+                          const sim::CameraParams& camera, double range,
+                          const world::PersonState& person, const Eigen::Vector3d& bodySize,
+                          int index) {
+    const double c = std::cos(sensor.yaw), s = std::sin(sensor.yaw);
+    for (const Eigen::Vector3d& p : bodySamples(person, bodySize, sensor.position)) {
+        const Eigen::Vector3d d = p - sensor.position;
+        const double distance = d.norm();
+        const double forward = c * d.x() + s * d.y();
+        const double left = -s * d.x() + c * d.y();
+        if (distance > range || forward <= 0.0 ||
+            std::abs(std::atan2(left, forward)) > 0.5 * camera.hfovRad ||
+            std::abs(std::atan2(d.z(), forward)) > 0.5 * camera.vfovRad())
+            continue;
+        const Eigen::Vector3f dir = (d / distance).cast<float>();
+        if (scene.firstPersonHit(sensor.position.cast<float>(), dir,
+                                 static_cast<float>(distance + 1.0)) == index)
+            return true;
+    }
+    return false;
+}
+
+void PeopleInput::observe(double t, const std::vector<world::PersonState>& truth,
+                          const world::RayCaster& scene, const FlatPose& sensor,
+                          const sim::CameraParams& camera, const Eigen::Vector3d& bodySize) {
+    std::vector<perception::PersonMeasurement> seen;
+    const bool sensed = params_.source == "sensed";
+    const double sigma = sensed ? params_.sensedNoiseSigma : 0.0;
+    const double r = std::max(sigma, params_.tracker.predictor.measurementSigma);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        const int id = static_cast<int>(i);
+        if (sensed && !visible(scene, sensor, camera, params_.sensedRange, truth[i], bodySize, id))
+            continue;
+        perception::PersonMeasurement m;
+        m.id = id;
+        m.position = truth[i].position;
+        if (sigma > 0)
+            m.position += sigma * Eigen::Vector2d(noise(rng_), noise(rng_));
+        m.covariance = Eigen::Matrix2d::Identity() * r * r;
+        seen.push_back(m);
+    }
+    measurements_ += static_cast<long>(seen.size());
+    tracker_.update(t, seen);
+    forecasts_ = tracker_.forecasts();
+}
+
+}  // namespace daep::mission

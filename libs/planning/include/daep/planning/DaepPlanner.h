@@ -1,0 +1,93 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "daep/planning/AepPlanner.h"
+#include "daep/planning/DynamicObstacles.h"
+#include "daep/planning/FrequencyMap.h"
+
+namespace daep::planning {
+
+/** Section [daep]: AEP's keys (with DAEP's values) plus the dynamic ones. */
+struct DaepParams {
+    AepParams aep;
+    SafetyParams safety;  ///< drone and body sizes come from the planning context
+    /** In-flight re-checks use clearance * this: a little slack so plans do not flicker. */
+    double recheckClearanceScale = 0.5;
+    double dfmCellSize = 1.0;
+    double zeta = 0.5;
+    /** paper: s = parent + d exp(-lambda c) (1 + zeta DFM); reference: DFM in the exponent. */
+    std::string score = "paper";
+    double borderBoost = 6.0;
+    double borderDistance = 1.0;
+    bool useGp = true;
+    double evasionHorizon = 3.0;  ///< hovering must stay safe this long, or the drone escapes
+    double waitTime = 0.4;        ///< hover this long when no move is safe and none is needed
+
+    static DaepParams fromConfig(const mrpt::config::CConfigFileBase& config);
+};
+
+/**
+ * Dynamic Autonomous Exploration Planner (Wiman et al.): AEP's local and global RRT* made
+ * aware of moving people.
+ *
+ * - Every node carries its arrival time (turn, then fly, from its parent); a move is kept only
+ *   when the drone, swept along it over its time interval, stays clear of every person's
+ *   predicted body grown by k predicted standard deviations (DynamicObstacles). Edges are
+ *   checked, not only nodes, in both trees, and again before a path is handed out.
+ * - Dynamic gain d(p, t): the cubature gain with rays stopped by the bodies predicted at the
+ *   arrival time. Where no body is in range the (border-boosted) cached gain and its GP
+ *   estimate are used as in AEP (the reference DAEP ray casts every node).
+ * - Score: s = s(parent) + d exp(-lambda |edge|) (1 + zeta DFM(p)), with DAEP's frequency map
+ *   of where people have been; score = reference puts DFM in the exponent instead.
+ * - In flight the rest of the path is re-checked against the latest predictions at every
+ *   frame; when a person is predicted to reach the drone the mission stops it and plans again,
+ *   and if even hovering is unsafe the planner picks the escape move with the most clearance.
+ */
+class DaepPlanner : public AepPlanner {
+public:
+    DaepPlanner(const DaepParams& params, const GainParams& gain, std::uint64_t seed);
+
+    std::string name() const override { return "daep"; }
+    bool usesPeople() const override { return true; }
+    Plan plan(const PlanningContext& context) override;
+    bool keepFlying(const PlanningContext& context, const Plan& plan,
+                    std::size_t nextWaypoint) override;
+
+    const DaepParams& daepParams() const { return params_; }
+    const FrequencyMap& frequencyMap() const { return dfm_; }
+    const DynamicObstacles& obstacles() const { return obstacles_; }
+
+    /**
+     * The escape when even hovering is unsafe: among short straight moves in known free space
+     * (no turn, so the drone moves at once), the one whose move and the hover after it, up to
+     * evasion_horizon_s, keep the most clearance from the predicted bodies.
+     */
+    Plan escape(const PlanningContext& context);
+
+    /** The timed moves of a plan flown from the context's pose and time. */
+    std::vector<TimedSegment> timedMoves(const PlanningContext& context, const Plan& plan,
+                                         std::size_t fromWaypoint) const;
+
+protected:
+    YawGain viewAt(const PlanningContext& context, const Eigen::Vector3d& p, double arrival,
+                   bool rayCast) override;
+    bool moveSafe(const FlatPose& from, double start, const FlatPose& to) const override;
+    double branchValue(double parentValue, double gain, double edge,
+                       const Eigen::Vector3d& p) const override;
+
+private:
+    void observePeople(const PlanningContext& context);
+    /** The plan up to its first unsafe move (at least one move, or none). */
+    Plan cutAtFirstUnsafe(const PlanningContext& context, Plan plan) const;
+    Plan bestEscape(const PlanningContext& context) const;
+    Plan wait(const std::string& why) const;
+
+    DaepParams params_;
+    DynamicObstacles obstacles_;
+    FrequencyMap dfm_;
+    double lastObservation_ = -1e300;
+};
+
+}  // namespace daep::planning

@@ -1,0 +1,217 @@
+#include "daep/planning/DaepPlanner.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "ConfigChecks.h"
+#include "daep/common/Config.h"
+#include "daep/mapping/ExplorationMap.h"
+
+namespace daep::planning {
+namespace {
+
+/** People are counted into the frequency map at most this often (s)... */
+constexpr double kDfmPeriod = 0.2;
+/** ...and only while measured recently (s): a prediction is not an observation. */
+constexpr double kDfmFreshness = 0.5;
+
+}  // namespace
+
+DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
+    const ConfigReader r(config, "daep");
+    DaepParams p;
+    p.aep = AepParams::fromConfig(config, "daep");
+    p.safety.clearance = requireNonNegative(r, "clearance");
+    p.safety.sigmaInflation = requireNonNegative(r, "sigma_inflation");
+    p.safety.maxInflation = requireNonNegative(r, "max_inflation");
+    p.safety.horizon = requirePositive(r, "prediction_horizon_s");
+    p.safety.timeStep = requirePositive(r, "safety_time_step_s");
+    p.recheckClearanceScale = requireNonNegative(r, "recheck_clearance_scale");
+    p.dfmCellSize = requirePositive(r, "dfm_cell_size");
+    p.zeta = requireNonNegative(r, "zeta");
+    p.score = r.requireString("score");
+    if (p.score != "paper" && p.score != "reference")
+        throw InputError("config: [daep] score: '" + p.score + "' must be paper or reference");
+    p.borderBoost = requirePositive(r, "border_boost");
+    p.borderDistance = requireNonNegative(r, "border_distance");
+    p.useGp = r.requireBool("use_gp");
+    p.evasionHorizon = requirePositive(r, "evasion_horizon_s");
+    p.waitTime = requirePositive(r, "wait_s");
+    return p;
+}
+
+namespace {
+
+AepParams withoutGpWhenOff(const DaepParams& p) {
+    AepParams a = p.aep;
+    if (!p.useGp)
+        a.sigmaThreshold = 0.0;  // the GP's sigma is never below 0: every node is ray cast
+    return a;
+}
+
+}  // namespace
+
+DaepPlanner::DaepPlanner(const DaepParams& params, const GainParams& gain, std::uint64_t seed)
+    : AepPlanner(withoutGpWhenOff(params), gain, seed), params_(params) {
+    gainEvaluator().setBorderBoost(params.borderBoost, params.borderDistance);
+}
+
+void DaepPlanner::observePeople(const PlanningContext& context) {
+    SafetyParams safety = params_.safety;
+    safety.droneSize = context.droneSize;
+    safety.personSize = context.personSize;
+    obstacles_ = DynamicObstacles(
+        safety, context.people ? *context.people : std::vector<perception::PersonForecast>{});
+    if (dfm_.width() == 0)
+        dfm_ = FrequencyMap(context.explorationBox, params_.dfmCellSize);
+    if (context.time < lastObservation_ + kDfmPeriod)
+        return;
+    lastObservation_ = context.time;
+    for (const perception::PersonForecast& f : obstacles_.people())
+        if (context.time - f.time <= kDfmFreshness)
+            dfm_.add(f.at(context.time).mean);
+}
+
+YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& p,
+                            double arrival, bool rayCast) {
+    std::vector<BodyOccluder> inRange;
+    const double range = gainEvaluator().params().range;
+    for (const BodyOccluder& b : obstacles_.bodiesAt(arrival))
+        if ((b.center - p.head<2>()).norm() <= range + b.radius)
+            inRange.push_back(b);
+    if (inRange.empty())
+        return AepPlanner::viewAt(context, p, arrival, rayCast);
+    ++mutableStats().rayCasts;
+    return gainEvaluator().bestYaw(*context.map, p, &inRange);
+}
+
+bool DaepPlanner::moveSafe(const FlatPose& from, double start, const FlatPose& to) const {
+    if (obstacles_.empty())
+        return true;
+    return obstacles_.isSafe(timedSegment(from, to, start, motion().speed, motion().yawRate));
+}
+
+double DaepPlanner::branchValue(double parentValue, double gain, double edge,
+                                const Eigen::Vector3d& p) const {
+    const double boost = params_.zeta * dfm_.value(p.head<2>());
+    const double lambda = params().lambda;
+    if (params_.score == "reference")
+        return parentValue + gain * std::exp(-lambda * edge * (1.0 + boost));
+    return parentValue + gain * std::exp(-lambda * edge) * (1.0 + boost);
+}
+
+std::vector<TimedSegment> DaepPlanner::timedMoves(const PlanningContext& context, const Plan& plan,
+                                                  std::size_t fromWaypoint) const {
+    std::vector<TimedSegment> moves;
+    FlatPose at = context.pose;
+    double t = context.time;
+    for (std::size_t k = fromWaypoint; k < plan.waypoints.size(); ++k) {
+        const FlatPose& next = plan.waypoints[k].pose;
+        moves.push_back(timedSegment(at, next, t, context.motion.speed, context.motion.yawRate));
+        t = moves.back().end();
+        at = next;
+    }
+    return moves;
+}
+
+Plan DaepPlanner::cutAtFirstUnsafe(const PlanningContext& context, Plan plan) const {
+    const std::vector<TimedSegment> moves = timedMoves(context, plan, 0);
+    std::size_t safe = 0;
+    while (safe < moves.size() && obstacles_.isSafe(moves[safe]))
+        ++safe;
+    if (safe < plan.waypoints.size()) {
+        plan.waypoints.resize(safe);
+        plan.reason += safe == 0 ? "; first move unsafe" : "; cut before an unsafe move";
+    }
+    return plan;
+}
+
+Plan DaepPlanner::wait(const std::string& why) const {
+    Plan plan;
+    plan.status = Plan::Status::Path;
+    plan.waitSeconds = params_.waitTime;
+    plan.reason = "wait: " + why;
+    return plan;
+}
+
+Plan DaepPlanner::escape(const PlanningContext& context) {
+    observePeople(context);
+    return bestEscape(context);
+}
+
+Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
+    const mapping::ExplorationMap& map = *context.map;
+    const double r = params().robotRadius;
+    const Aabb box = shrink(context.explorationBox, r);
+    const Eigen::Vector3d& from = context.pose.position;
+    const bool leavingBlocked = !map.isSegmentFree(from, from, r);
+    double bestGap = -std::numeric_limits<double>::infinity();
+    FlatPose best = context.pose;
+    for (const double distance : {0.4, 0.8, 1.2, 1.6}) {
+        for (int k = 0; k < 16; ++k) {
+            for (const double dz : {0.0, 0.4, -0.4}) {
+                const double a = 2.0 * M_PI * k / 16.0;
+                const Eigen::Vector3d to =
+                    from + Eigen::Vector3d(distance * std::cos(a), distance * std::sin(a), dz);
+                if (!box.contains(to) || !segmentFlyable(map, from, to, r, leavingBlocked))
+                    continue;
+                // Keep the heading: no turn, the drone moves at once.
+                const FlatPose goal{to, context.pose.yaw};
+                const TimedSegment move = timedSegment(
+                    context.pose, goal, context.time, context.motion.speed, context.motion.yawRate);
+                TimedSegment hover;
+                hover.from = hover.to = to;
+                hover.start = move.end();
+                hover.turnTime = std::max(0.0, context.time + params_.evasionHorizon - move.end());
+                const double gap =
+                    std::min(obstacles_.clearance(move), obstacles_.clearance(hover));
+                if (gap > bestGap + 1e-9) {
+                    bestGap = gap;
+                    best = goal;
+                }
+            }
+        }
+    }
+    if (bestGap == -std::numeric_limits<double>::infinity())
+        return wait("a person is coming and no escape is free of static obstacles");
+    Plan plan;
+    plan.status = Plan::Status::Path;
+    plan.waypoints.push_back({best, context.time + context.motion.travelTime(context.pose, best)});
+    std::ostringstream why;
+    why << "evasion: escape with clearance " << bestGap << " m";
+    plan.reason = why.str();
+    return plan;
+}
+
+Plan DaepPlanner::plan(const PlanningContext& context) {
+    observePeople(context);
+    const bool hoverSafe = obstacles_.isSafeToHover(context.pose.position, context.time,
+                                                    context.time + params_.evasionHorizon);
+    Plan plan = AepPlanner::plan(context);
+    if (plan.status == Plan::Status::Finished)
+        return plan;
+    plan = cutAtFirstUnsafe(context, std::move(plan));
+    if (!plan.waypoints.empty())
+        return plan;
+    if (!hoverSafe)
+        return bestEscape(context);
+    return wait(plan.reason);
+}
+
+bool DaepPlanner::keepFlying(const PlanningContext& context, const Plan& plan,
+                             std::size_t nextWaypoint) {
+    observePeople(context);
+    if (!AepPlanner::keepFlying(context, plan, nextWaypoint))
+        return false;
+    for (const TimedSegment& move : timedMoves(context, plan, nextWaypoint)) {
+        if (move.start > context.time + params_.safety.horizon)
+            break;
+        if (!obstacles_.isSafe(move, params_.recheckClearanceScale))
+            return false;
+    }
+    return true;
+}
+
+}  // namespace daep::planning

@@ -1,0 +1,119 @@
+#include "daep/planning/DynamicObstacles.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace daep::planning {
+
+Eigen::Vector3d TimedSegment::positionAt(double t) const {
+    const double flying = t - start - turnTime;
+    if (flying <= 0.0 || flyTime <= 0.0)
+        return flying <= 0.0 ? from : to;
+    return from + (to - from) * std::min(1.0, flying / flyTime);
+}
+
+TimedSegment timedSegment(const FlatPose& a, const FlatPose& b, double start, double speed,
+                          double yawRate) {
+    TimedSegment s;
+    s.from = a.position;
+    s.to = b.position;
+    s.start = start;
+    s.turnTime = std::abs(wrapAngle(b.yaw - a.yaw)) / yawRate;
+    s.flyTime = (b.position - a.position).norm() / speed;
+    return s;
+}
+
+DynamicObstacles::DynamicObstacles(const SafetyParams& params,
+                                   std::vector<perception::PersonForecast> people)
+    : params_(params), people_(std::move(people)) {
+    bodyRadius_ =
+        0.5 * params.personSize.head<2>().norm() + 0.5 * params.droneSize.head<2>().norm();
+    bodyTop_ = params.personSize.z() + 0.5 * params.droneSize.z();
+}
+
+namespace {
+
+/** Square root of the largest eigenvalue of a 2x2 covariance. */
+double largestSigma(const Eigen::Matrix2d& c) {
+    const double mean = 0.5 * (c(0, 0) + c(1, 1));
+    const double diff = 0.5 * (c(0, 0) - c(1, 1));
+    return std::sqrt(std::max(0.0, mean + std::sqrt(diff * diff + c(0, 1) * c(0, 1))));
+}
+
+}  // namespace
+
+double DynamicObstacles::keepOutRadius(const perception::PersonForecast& person, double t,
+                                       double clearanceScale) const {
+    const double sigma = largestSigma(person.at(t).covariance);
+    return bodyRadius_ + clearanceScale * params_.clearance +
+           std::min(params_.maxInflation, params_.sigmaInflation * sigma);
+}
+
+double DynamicObstacles::gapTo(const perception::PersonForecast& person, const TimedSegment& move,
+                               double clearanceScale) const {
+    const double t0 = std::max(move.start, person.time);
+    const double t1 = std::min(move.end(), person.time + params_.horizon);
+    if (t1 < t0)
+        return std::numeric_limits<double>::infinity();
+    const double droneSpeed =
+        move.flyTime > 0.0 ? (move.to - move.from).norm() / move.flyTime : 0.0;
+    const double closing = droneSpeed + person.velocity().norm();
+    // Quick reject: even closing at full speed over the whole move cannot reach the body.
+    const Eigen::Vector2d startGap = move.positionAt(t0).head<2>() - person.at(t0).mean;
+    const double reach = keepOutRadius(person, t1, clearanceScale) + closing * (t1 - t0);
+    if (startGap.norm() > reach + 1e-9)
+        return startGap.norm() - reach;
+    const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) / params_.timeStep)));
+    const double h = (t1 - t0) / steps;
+    const double slack = 0.5 * h * closing;
+    double gap = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= steps; ++k) {
+        const double t = t0 + k * h;
+        const Eigen::Vector3d d = move.positionAt(t);
+        const double above = d.z() - (bodyTop_ + clearanceScale * params_.clearance);
+        const double horizontal = (d.head<2>() - person.at(t).mean).norm() -
+                                  keepOutRadius(person, t, clearanceScale) - slack;
+        gap = std::min(gap, std::max(horizontal, above));
+    }
+    return gap;
+}
+
+double DynamicObstacles::clearance(const TimedSegment& move, double clearanceScale) const {
+    double gap = std::numeric_limits<double>::infinity();
+    for (const perception::PersonForecast& p : people_)
+        gap = std::min(gap, gapTo(p, move, clearanceScale));
+    return gap;
+}
+
+bool DynamicObstacles::isSafe(const TimedSegment& move, double clearanceScale) const {
+    for (const perception::PersonForecast& p : people_)
+        if (gapTo(p, move, clearanceScale) <= 0.0)
+            return false;
+    return true;
+}
+
+bool DynamicObstacles::isSafeToHover(const Eigen::Vector3d& p, double t0, double t1) const {
+    TimedSegment hover;
+    hover.from = hover.to = p;
+    hover.start = t0;
+    hover.turnTime = std::max(0.0, t1 - t0);
+    return isSafe(hover);
+}
+
+std::vector<BodyOccluder> DynamicObstacles::bodiesAt(double t) const {
+    std::vector<BodyOccluder> out;
+    for (const perception::PersonForecast& p : people_) {
+        if (t > p.time + params_.horizon)
+            continue;
+        BodyOccluder b;
+        b.center = p.at(t).mean;
+        b.radius = 0.5 * std::min(params_.personSize.x(), params_.personSize.y());
+        b.height = params_.personSize.z();
+        out.push_back(b);
+    }
+    return out;
+}
+
+}  // namespace daep::planning

@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <Eigen/Geometry>
+#include <fstream>
+#include <sstream>
+
+#include "daep/common/Error.h"
+#include "daep/mission/PeopleInput.h"
+#include "daep/world/RayCaster.h"
+
+namespace daep::mission {
+namespace {
+
+world::BoxShape wall(const Eigen::Vector3d& center, const Eigen::Vector3d& size) {
+    world::BoxShape b;
+    b.name = "wall";
+    b.pose = Eigen::Translation3d(center) * Eigen::AngleAxisd(0.0, Eigen::Vector3d::UnitZ());
+    b.size = size;
+    return b;
+}
+
+world::PersonState standing(double x, double y) {
+    world::PersonState p;
+    p.position = {x, y};
+    return p;
+}
+
+/** A camera at (0, 0, 1) facing +x; a wall across y in [2, 6] at x = 3. */
+struct SensedPeople : ::testing::Test {
+    SensedPeople() : caster(worldWithWall()) {}
+    static world::WorldSpec worldWithWall() {
+        world::WorldSpec w;
+        w.boxes.push_back(wall({3.0, 4.0, 1.25}, {0.2, 4.0, 2.5}));
+        return w;
+    }
+    bool sees(const std::vector<world::PersonState>& people, int index) {
+        caster.setPeople(people, body);
+        return PeopleInput::visible(caster, camera, cameraParams, 5.0, people[index], body, index);
+    }
+    world::RayCaster caster;
+    FlatPose camera{{0, 0, 1}, 0.0};
+    sim::CameraParams cameraParams;
+    Eigen::Vector3d body{1.0, 1.0, 1.8};
+};
+
+TEST_F(SensedPeople, SeesAPersonInFrontWithinRange) {
+    EXPECT_TRUE(sees({standing(3.0, 0.0)}, 0));
+    EXPECT_TRUE(sees({standing(3.0, -2.0)}, 0));  // 34 deg off axis, inside the 103 deg FoV
+}
+
+TEST_F(SensedPeople, DoesNotSeeBehindTheCameraOrBeyondRange) {
+    EXPECT_FALSE(sees({standing(-3.0, 0.0)}, 0));
+    EXPECT_FALSE(sees({standing(0.3, 4.0)}, 0));  // 85 deg to the left
+    EXPECT_FALSE(sees({standing(7.0, 0.0)}, 0));
+}
+
+TEST_F(SensedPeople, WallsAndOtherPeopleHideAPerson) {
+    EXPECT_FALSE(sees({standing(4.5, 4.0)}, 0));  // behind the wall
+    EXPECT_TRUE(sees({standing(2.0, 3.0)}, 0));   // in front of it
+    // One person right behind another, seen along the same line: only the front one.
+    const std::vector<world::PersonState> queue{standing(1.8, 0.0), standing(3.6, 0.0)};
+    EXPECT_TRUE(sees(queue, 0));
+    EXPECT_FALSE(sees(queue, 1));
+}
+
+std::string trackingSection(const std::string& source) {
+    return "[tracking]\npeople_source = " + source +
+           "\nsensed_range = 5\nsensed_noise_sigma = 0.05\naccel_noise = 0.02\n"
+           "measurement_sigma = 0.02\ninitial_speed_sigma = 1\ndrop_after_s = 2\n";
+}
+
+TEST_F(SensedPeople, SensedTracksOnlyWhoIsSeenAndForgetsThemAfterTheTimeout) {
+    const mrpt::config::CConfigFileMemory cfg(trackingSection("sensed"));
+    PeopleInput input(PeopleInputParams::fromConfig(cfg), 1);
+    // Person 0 walks in front of the camera, person 1 stands behind the wall.
+    for (int k = 0; k <= 10; ++k) {
+        const std::vector<world::PersonState> people{standing(3.0, -1.0 + 0.07 * k),
+                                                     standing(4.5, 4.0)};
+        caster.setPeople(people, body);
+        input.observe(0.2 * k, people, caster, camera, cameraParams, body);
+    }
+    ASSERT_EQ(input.forecasts().size(), 1u);
+    EXPECT_EQ(input.forecasts()[0].id, 0);
+    EXPECT_NEAR(input.forecasts()[0].velocity().y(), 0.35, 0.15);
+    // Person 0 walks out of view (behind the camera): predicted on, then dropped after 2 s.
+    const std::vector<world::PersonState> gone{standing(-3.0, 0.0), standing(4.5, 4.0)};
+    caster.setPeople(gone, body);
+    input.observe(3.0, gone, caster, camera, cameraParams, body);
+    EXPECT_EQ(input.forecasts().size(), 1u);
+    input.observe(4.1, gone, caster, camera, cameraParams, body);
+    EXPECT_EQ(input.forecasts().size(), 0u);
+}
+
+TEST_F(SensedPeople, GroundTruthTracksEveryoneWherever) {
+    const mrpt::config::CConfigFileMemory cfg(trackingSection("ground_truth"));
+    PeopleInput input(PeopleInputParams::fromConfig(cfg), 1);
+    const std::vector<world::PersonState> people{standing(-3.0, 0.0), standing(4.5, 4.0)};
+    caster.setPeople(people, body);
+    input.observe(0.0, people, caster, camera, cameraParams, body);
+    EXPECT_EQ(input.forecasts().size(), 2u);
+    EXPECT_TRUE(input.forecasts()[1].state.head<2>().isApprox(Eigen::Vector2d(4.5, 4.0)));
+}
+
+TEST(PeopleInputParams, RejectsAnUnknownSourceNamingTheKey) {
+    const mrpt::config::CConfigFileMemory cfg(trackingSection("telepathy"));
+    try {
+        PeopleInputParams::fromConfig(cfg);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("[tracking] people_source"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace daep::mission

@@ -1,0 +1,215 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "PlanningTestUtil.h"
+#include "daep/common/Error.h"
+#include "daep/perception/PersonTrack.h"
+#include "daep/planning/DaepPlanner.h"
+
+namespace daep::planning {
+namespace {
+
+using perception::PersonForecast;
+using test::contextFor;
+
+std::string daepText(const std::string& key = "", const std::string& value = "") {
+    std::string text = test::defaultsText();
+    if (!key.empty())
+        text = test::editKey(text, "daep", key, &value);
+    return text;
+}
+
+DaepPlanner makePlanner(std::uint64_t seed, const std::string& key = "",
+                        const std::string& value = "") {
+    const auto cfg = test::configFromText(daepText(key, value));
+    return DaepPlanner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), seed);
+}
+
+PersonForecast walker(int id, Eigen::Vector2d p, Eigen::Vector2d v, double t0) {
+    PersonForecast f;
+    f.id = id;
+    f.time = t0;
+    f.state << p, v;
+    f.covariance.diagonal() << 1e-4, 1e-4, 1e-3, 1e-3;
+    f.accelNoise = 0.02;
+    return f;
+}
+
+/** Exposes the score so that the formula can be checked. */
+class ScoredDaep : public DaepPlanner {
+public:
+    using DaepPlanner::DaepPlanner;
+    double value(double parent, double gain, double edge, const Eigen::Vector3d& p) const {
+        return branchValue(parent, gain, edge, p);
+    }
+};
+
+/** A planner whose frequency map has seen one person standing at `at` for a while. */
+ScoredDaep withPersonSeenAt(const std::string& score, const mapping::ExplorationMap& map,
+                            const Eigen::Vector2d& at) {
+    const auto cfg = test::configFromText(daepText("score", score));
+    ScoredDaep planner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 1);
+    PlanningContext ctx = contextFor(map, {1, 1, 1});
+    for (int k = 0; k < 10; ++k) {
+        ctx.time = 12.0 + 0.25 * k;
+        const std::vector<PersonForecast> people{walker(0, at, {0, 0}, ctx.time)};
+        ctx.people = &people;
+        planner.keepFlying(ctx, Plan{}, 0);
+    }
+    return planner;
+}
+
+struct DaepRoom : test::HalfKnownRoomMap {};
+
+TEST_F(DaepRoom, ScoreBoostsGainWhereTheFrequencyMapSawPeople) {
+    const ScoredDaep paper = withPersonSeenAt("paper", *map, {3.5, 2.5});
+    const double lambda = paper.params().lambda, zeta = paper.daepParams().zeta;
+    const Eigen::Vector3d busy(3.4, 2.6, 1.0), quiet(1.5, 0.5, 1.0);
+    EXPECT_DOUBLE_EQ(paper.frequencyMap().value(busy.head<2>()), 1.0);
+    EXPECT_DOUBLE_EQ(paper.frequencyMap().value(quiet.head<2>()), 0.0);
+    EXPECT_NEAR(paper.value(2.0, 10.0, 1.2, busy),
+                2.0 + 10.0 * std::exp(-lambda * 1.2) * (1 + zeta), 1e-12);
+    EXPECT_NEAR(paper.value(2.0, 10.0, 1.2, quiet), 2.0 + 10.0 * std::exp(-lambda * 1.2), 1e-12);
+    // The reference code's variant puts the frequency into the exponent: a penalty.
+    const ScoredDaep reference = withPersonSeenAt("reference", *map, {3.5, 2.5});
+    EXPECT_NEAR(reference.value(2.0, 10.0, 1.2, busy),
+                2.0 + 10.0 * std::exp(-lambda * 1.2 * (1 + zeta)), 1e-12);
+}
+
+TEST_F(DaepRoom, WithoutPeopleItPlansLikeAepToTheUnknown) {
+    DaepPlanner planner = makePlanner(5);
+    const Plan plan = planner.plan(contextFor(*map, root));
+    ASSERT_EQ(plan.status, Plan::Status::Path);
+    ASSERT_FALSE(plan.waypoints.empty());
+    EXPECT_GT(plan.gain, 0.0);
+}
+
+TEST_F(DaepRoom, EveryPlannedMoveKeepsClearOfWalkingPeople) {
+    // Two people cross the known half of the room while the drone plans from its middle.
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+        DaepPlanner planner = makePlanner(seed);
+        PlanningContext ctx = contextFor(*map, root);
+        const std::vector<PersonForecast> people{walker(0, {0.5, 3.0}, {0.35, 0}, ctx.time),
+                                                 walker(1, {4.0, 0.5}, {-0.2, 0.25}, ctx.time)};
+        ctx.people = &people;
+        const Plan plan = planner.plan(ctx);
+        ASSERT_EQ(plan.status, Plan::Status::Path) << seed;
+        const std::vector<TimedSegment> moves = planner.timedMoves(ctx, plan, 0);
+        for (const TimedSegment& m : moves)
+            EXPECT_TRUE(planner.obstacles().isSafe(m)) << "seed " << seed;
+        // Every node of the tree was reached by safe moves at its own arrival time.
+        const Tree& tree = planner.tree();
+        for (int i = 1; i < tree.size(); ++i) {
+            const TreeNode& n = tree.node(i);
+            const TreeNode& parent = tree.node(n.parent);
+            EXPECT_NEAR(n.time,
+                        parent.time + ctx.motion.travelTime({parent.position, parent.yaw},
+                                                            {n.position, n.yaw}),
+                        1e-9);
+        }
+    }
+}
+
+TEST_F(DaepRoom, EscapesAPersonWalkingAtTheHoveringDrone) {
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, root);
+    // 1.6 m away, coming straight at the drone: contact within about 2 s.
+    const std::vector<PersonForecast> people{walker(0, {3.6, 2.0}, {-0.35, 0}, ctx.time)};
+    ctx.people = &people;
+    ASSERT_FALSE(DynamicObstacles(planner.daepParams().safety, people)
+                     .isSafeToHover(root, ctx.time, ctx.time + 3));
+    const Plan plan = planner.plan(ctx);
+    ASSERT_EQ(plan.status, Plan::Status::Path);
+    ASSERT_FALSE(plan.waypoints.empty()) << plan.reason;
+    const TimedSegment first = planner.timedMoves(ctx, plan, 0).front();
+    TimedSegment stay;
+    stay.from = stay.to = root;
+    stay.start = ctx.time;
+    stay.turnTime = first.end() - ctx.time;
+    EXPECT_GT(planner.obstacles().clearance(first), planner.obstacles().clearance(stay))
+        << plan.reason;
+    EXPECT_TRUE(map->isSegmentFree(first.to, first.to, planner.params().robotRadius));
+}
+
+TEST_F(DaepRoom, TheEscapeMovesAtOnceToTheMostClearanceInKnownFreeSpace) {
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, root, 0.7);
+    // Two people closing in from the east and the north-east.
+    const std::vector<PersonForecast> people{walker(0, {3.4, 2.0}, {-0.35, 0}, ctx.time),
+                                             walker(1, {3.0, 3.3}, {-0.25, -0.25}, ctx.time)};
+    ctx.people = &people;
+    const Plan plan = planner.escape(ctx);
+    ASSERT_EQ(plan.waypoints.size(), 1u) << plan.reason;
+    const FlatPose goal = plan.waypoints[0].pose;
+    EXPECT_DOUBLE_EQ(goal.yaw, 0.7);  // no turn first
+    EXPECT_TRUE(map->isSegmentFree(root, goal.position, planner.params().robotRadius));
+    // Away from both: west or south-west.
+    EXPECT_LT(goal.position.x(), root.x());
+    const double horizon = planner.daepParams().evasionHorizon;
+    auto clearanceVia = [&](const Eigen::Vector3d& to) {
+        const TimedSegment move = timedSegment(ctx.pose, {to, 0.7}, ctx.time, 0.5, 1.0);
+        TimedSegment hover;
+        hover.from = hover.to = to;
+        hover.start = move.end();
+        hover.turnTime = std::max(0.0, ctx.time + horizon - move.end());
+        return std::min(planner.obstacles().clearance(move), planner.obstacles().clearance(hover));
+    };
+    EXPECT_GT(clearanceVia(goal.position), clearanceVia(root) + 0.5);
+    // No other candidate direction at the same distance does better.
+    const double d = (goal.position - root).norm();
+    for (int k = 0; k < 16; ++k) {
+        const double a = 2 * M_PI * k / 16;
+        const Eigen::Vector3d other = root + d * Eigen::Vector3d(std::cos(a), std::sin(a), 0);
+        if (map->isSegmentFree(root, other, planner.params().robotRadius)) {
+            EXPECT_LE(clearanceVia(other), clearanceVia(goal.position) + 1e-9) << k;
+        }
+    }
+}
+
+TEST_F(DaepRoom, KeepFlyingStopsWhenAPersonIsPredictedOnTheRestOfThePath) {
+    DaepPlanner planner = makePlanner(2);
+    PlanningContext ctx = contextFor(*map, root);
+    Plan plan;
+    plan.status = Plan::Status::Path;
+    plan.waypoints.push_back({{{3.5, 2.0, 1.0}, 0.0}, ctx.time + 3.0});
+    const std::vector<PersonForecast> far{walker(0, {0.5, 3.5}, {0, 0}, ctx.time)};
+    ctx.people = &far;
+    EXPECT_TRUE(planner.keepFlying(ctx, plan, 0));
+    // Someone steps towards the drone's way: at 0.35 m/s they meet it mid-path.
+    const std::vector<PersonForecast> crossing{walker(0, {2.8, 0.6}, {0, 0.35}, ctx.time)};
+    ctx.people = &crossing;
+    EXPECT_FALSE(planner.keepFlying(ctx, plan, 0));
+}
+
+TEST(DaepParams, MissingOrBadKeysAreNamed) {
+    const std::string text = test::defaultsText();
+    const auto missing = test::configFromText(test::editKey(text, "daep", "sigma_inflation"));
+    try {
+        DaepParams::fromConfig(*missing);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("[daep] sigma_inflation"), std::string::npos)
+            << e.what();
+    }
+    const std::string bad = "sideways";
+    const auto wrong = test::configFromText(test::editKey(text, "daep", "score", &bad));
+    EXPECT_THROW(DaepParams::fromConfig(*wrong), InputError);
+    const DaepParams p = DaepParams::fromConfig(*test::configFromText(text));
+    EXPECT_DOUBLE_EQ(p.aep.zeroGain, 15.0);  // DAEP's value, not AEP's 25
+    EXPECT_DOUBLE_EQ(p.aep.lambda, 0.75);
+    EXPECT_DOUBLE_EQ(p.zeta, 0.5);
+    EXPECT_DOUBLE_EQ(p.borderBoost, 6.0);
+    EXPECT_EQ(p.score, "paper");
+}
+
+TEST(DaepPlanner, IsCreatedByNameAndWantsPeople) {
+    const auto cfg = test::configFromText(test::defaultsText());
+    const auto planner = createPlanner("daep", *cfg, 1);
+    EXPECT_EQ(planner->name(), "daep");
+    EXPECT_TRUE(planner->usesPeople());
+    EXPECT_FALSE(createPlanner("aep", *cfg, 1)->usesPeople());
+}
+
+}  // namespace
+}  // namespace daep::planning
