@@ -133,6 +133,18 @@ TEST(BuiltinWorlds, MazeAndApartmentWallsSeparateTheirStarts) {
     }
 }
 
+TEST(BuiltinWorlds, MazeHalvesMeetOnlyThroughTheArchedDoorway) {
+    const WorldSpec w = loadWorldFile(resolveWorldPath("maze"));
+    const RayCaster caster(w);
+    const Eigen::Vector3f south(0, -1, 0);
+    // Through the doorway in the wall at y = -5.4 (x 7.9..9.75, 1.7 m high) to the next wall,
+    // whose north face is at y = -7.8.
+    EXPECT_NEAR(caster.castRay(Eigen::Vector3f(8.8f, -4.5f, 1.0f), south, 100.0f), 3.3, 0.05);
+    // Above the doorway, and beside it, the wall.
+    EXPECT_LT(caster.castRay(Eigen::Vector3f(8.8f, -4.5f, 2.4f), south, 100.0f), 1.0f);
+    EXPECT_LT(caster.castRay(Eigen::Vector3f(11.0f, -4.5f, 1.0f), south, 100.0f), 1.0f);
+}
+
 TEST(BuiltinWorlds, FieldIsWalledAllAround) {
     const WorldSpec w = loadWorldFile(resolveWorldPath("field"));
     const RayCaster caster(w);
