@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "daep/world/RayCaster.h"
 #include "daep/world/WorldSpec.h"
 
@@ -8,7 +11,7 @@ namespace {
 
 struct Expected {
     const char* name;
-    double volume;  ///< paper Table III
+    double volume;  ///< paper Table III (Apartment: its exploration config's 1627.5)
     std::size_t people;
 };
 
@@ -54,11 +57,14 @@ TEST_P(BuiltinWorld, HasAFloorUnderEveryStart) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Paper, BuiltinWorld,
-                         ::testing::Values(Expected{"exhibition", 450, 22},
-                                           Expected{"crosswalks", 450, 4},
-                                           Expected{"patrol", 800, 8}, Expected{"cafe", 510, 2}),
-                         [](const auto& p) { return std::string(p.param.name); });
+INSTANTIATE_TEST_SUITE_P(
+    Paper, BuiltinWorld,
+    ::testing::Values(Expected{"exhibition", 450, 22}, Expected{"crosswalks", 450, 4},
+                      Expected{"patrol", 800, 8}, Expected{"cafe", 510, 2},
+                      Expected{"maze", 865, 5}, Expected{"apartment", 1627.5, 12},
+                      Expected{"field", 1440, 8}, Expected{"tunnel", 1100, 2},
+                      Expected{"auditorium", 798, 3}, Expected{"village", 40057, 15}),
+    [](const auto& p) { return std::string(p.param.name); });
 
 TEST(BuiltinWorlds, CafeBoxIsTheConfiguredOne) {
     const WorldSpec w = loadWorldFile(resolveWorldPath("cafe"));
@@ -83,6 +89,133 @@ TEST(BuiltinWorlds, HallsAreWalledAllAround) {
             }
         }
     }
+}
+
+/** Number of pairs of starts whose straight line (1 m above the lower start) is blocked. */
+int blockedStartPairs(const WorldSpec& w, const RayCaster& caster) {
+    int blocked = 0;
+    for (std::size_t i = 0; i < w.starts.size(); ++i)
+        for (std::size_t j = i + 1; j < w.starts.size(); ++j) {
+            Eigen::Vector3d a = w.starts[i], b = w.starts[j];
+            a.z() = b.z() = std::min(a.z(), b.z()) + 1.0;
+            const Eigen::Vector3d d = b - a;
+            const float hit = caster.castRay(a.cast<float>(), d.normalized().cast<float>(), 200.0f);
+            if (hit < d.norm())
+                ++blocked;
+        }
+    return blocked;
+}
+
+TEST(BuiltinWorlds, BoxesAreTheConfiguredOnes) {
+    struct Box {
+        const char* name;
+        Eigen::Vector3d min, max;
+    };
+    // config/<world>_exploration.yaml, boundary/min and boundary/max. The Village is shifted
+    // down by 6.5 m as a whole (its file says why): the config's z is 5.5 -> 9.
+    for (const Box& b :
+         {Box{"maze", {-6.5, -16, 0}, {13.5, 1.3, 2.5}},
+          Box{"apartment", {-13.5, -11.2, 0}, {14.7, 16, 2.5}},
+          Box{"field", {-12, -12, 0}, {12, 12, 2.5}}, Box{"tunnel", {-5, 0, 0}, {5, 22, 5}},
+          Box{"auditorium", {-2.5, -8.8, 0}, {16.5, 5.9, 3}},
+          Box{"village", {96, -139, 5.5 - 6.5}, {201, -30, 9 - 6.5}}}) {
+        const WorldSpec w = loadWorldFile(resolveWorldPath(b.name));
+        EXPECT_TRUE(w.explorationBox.min.isApprox(b.min)) << b.name;
+        EXPECT_TRUE(w.explorationBox.max.isApprox(b.max)) << b.name;
+    }
+}
+
+TEST(BuiltinWorlds, MazeAndApartmentWallsSeparateTheirStarts) {
+    // Of the 10 straight lines between the five starts, the walls cut most.
+    for (const char* name : {"maze", "apartment"}) {
+        const WorldSpec w = loadWorldFile(resolveWorldPath(name));
+        EXPECT_GE(blockedStartPairs(w, RayCaster(w)), 8) << name;
+    }
+}
+
+TEST(BuiltinWorlds, MazeHalvesMeetOnlyThroughTheArchedDoorway) {
+    const WorldSpec w = loadWorldFile(resolveWorldPath("maze"));
+    const RayCaster caster(w);
+    const Eigen::Vector3f south(0, -1, 0);
+    // Through the doorway in the wall at y = -5.4 (x 7.9..9.75, 1.7 m high) to the next wall,
+    // whose north face is at y = -7.8.
+    EXPECT_NEAR(caster.castRay(Eigen::Vector3f(8.8f, -4.5f, 1.0f), south, 100.0f), 3.3, 0.05);
+    // Above the doorway, and beside it, the wall.
+    EXPECT_LT(caster.castRay(Eigen::Vector3f(8.8f, -4.5f, 2.4f), south, 100.0f), 1.0f);
+    EXPECT_LT(caster.castRay(Eigen::Vector3f(11.0f, -4.5f, 1.0f), south, 100.0f), 1.0f);
+}
+
+TEST(BuiltinWorlds, FieldIsWalledAllAround) {
+    const WorldSpec w = loadWorldFile(resolveWorldPath("field"));
+    const RayCaster caster(w);
+    for (const auto& s : w.starts) {
+        const Eigen::Vector3f o = (s + Eigen::Vector3d(0, 0, 1.0)).cast<float>();
+        for (int i = 0; i < 16; ++i) {
+            const double a = 2 * M_PI * i / 16 + 0.05;  // off the grid lines of the posts
+            EXPECT_LT(caster.castRay(o, Eigen::Vector3f(std::cos(a), std::sin(a), 0), 100.0f),
+                      2 * std::sqrt(2.0) * 12.8)
+                << s.transpose();
+        }
+    }
+}
+
+TEST(BuiltinWorlds, TunnelIsWalledOnItsLongSidesAndVaulted) {
+    const WorldSpec w = loadWorldFile(resolveWorldPath("tunnel"));
+    const RayCaster caster(w);
+    // Along the whole box, 1 m up, west of the excavator (x = -2) and east of it (x = 4): the
+    // side walls' inner faces at x = -5.07 and 5.13, just outside the box's x faces.
+    for (double y = 0.5; y < 21.2; y += 0.5) {
+        const Eigen::Vector3f west(-2.0f, y, 1.0f), east(4.0f, y, 1.0f);
+        EXPECT_NEAR(caster.castRay(west, Eigen::Vector3f(-1, 0, 0), 100.0f), 3.07, 0.02) << y;
+        EXPECT_NEAR(caster.castRay(east, Eigen::Vector3f(1, 0, 0), 100.0f), 1.13, 0.02) << y;
+        // The vault's crown overhead, above the box's top.
+        const float up = caster.castRay(Eigen::Vector3f(0, y, 1), Eigen::Vector3f(0, 0, 1), 100.0f);
+        EXPECT_NEAR(1.0f + up, 6.33f, 0.05f) << y;
+    }
+    // Along the tunnel: open through the portal at y = 0, closed by the collapse past y = 21.5.
+    const Eigen::Vector3f o(-2.5f, 10.0f, 1.0f);
+    EXPECT_GT(caster.castRay(o, Eigen::Vector3f(0, -1, 0), 100.0f), 20.0f);
+    const float ahead = caster.castRay(o, Eigen::Vector3f(0, 1, 0), 100.0f);
+    EXPECT_GT(o.y() + ahead, 21.5f);
+    EXPECT_LT(o.y() + ahead, 23.0f);
+    // The excavator stands in the middle, between starts 1 (y = 5) and 3 (y = 12.4).
+    EXPECT_LT(caster.castRay(Eigen::Vector3f(1.4f, 5.0f, 0.5f), Eigen::Vector3f(0, 1, 0), 100.0f),
+              4.0f);
+}
+
+TEST(BuiltinWorlds, AuditoriumTiersCarryTheRaisedStarts) {
+    const WorldSpec w = loadWorldFile(resolveWorldPath("auditorium"));
+    const RayCaster caster(w);
+    // The starts at z = 1.5 rest on a tier at most 0.1 m below them; the others lower.
+    for (const auto& s : w.starts) {
+        const Eigen::Vector3f o = (s + Eigen::Vector3d(0, 0, 1.0)).cast<float>();
+        const float floorZ = o.z() - caster.castRay(o, Eigen::Vector3f(0, 0, -1), 100.0f);
+        EXPECT_GE(floorZ, s.z() - 0.3) << s.transpose();
+        if (s.z() > 1.0) {
+            EXPECT_GT(floorZ, 1.3f) << s.transpose();
+        }
+    }
+}
+
+TEST(BuiltinWorlds, VillageIsLargeAndItsRoutesAreFree) {
+    const WorldSpec w = loadWorldFile(resolveWorldPath("village"));
+    const Eigen::Vector3d size = w.explorationBox.size();
+    EXPECT_GE(size.x() * size.y(), 10000.0);  // about 1 ha
+    EXPECT_GE(w.boxes.size() + w.cylinders.size(), 40u);
+    // No static object stands on a person's route: a person's box, walked along every leg,
+    // touches only the ground (lifted 2 cm off it).
+    const StaticCollisionChecker checker(w);
+    const Eigen::Vector3d body(1.0, 1.0, 1.8);
+    for (const auto& p : w.people)
+        for (std::size_t i = 0; i < p.waypoints.size(); ++i) {
+            const Eigen::Vector2d a = p.waypoints[i];
+            const Eigen::Vector2d b = p.waypoints[(i + 1) % p.waypoints.size()];
+            for (double t = 0; t <= 1.0; t += 0.05) {
+                const Eigen::Vector2d q = a + t * (b - a);
+                EXPECT_FALSE(checker.overlaps(Eigen::Vector3d(q.x(), q.y(), 0.92), body, 0.0))
+                    << p.name << " at " << q.transpose();
+            }
+        }
 }
 
 }  // namespace

@@ -247,7 +247,8 @@ TEST(WorldFile, UnreadableMeshIsNamed) {
 
 TEST(WorldFile, ResolvesBuiltinNamesAndPaths) {
     const auto names = builtinWorldNames();
-    for (const char* n : {"cafe", "crosswalks", "exhibition", "patrol"})
+    for (const char* n : {"apartment", "auditorium", "cafe", "crosswalks", "exhibition", "field",
+                          "maze", "patrol", "tunnel", "village"})
         EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
     EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
 
