@@ -99,6 +99,9 @@ perception::DetectorParams loadDetectorParams(const mrpt::config::CConfigFileBas
     if (p.minEvidenceFraction > 1)
         throw InputError("[detector] min_evidence_fraction: must be in [0, 1]");
     p.depthJump = requirePositive(r, "depth_jump");
+    p.maxGrazingAngle = r.requireAngleDeg("max_grazing_deg");
+    if (!(p.maxGrazingAngle > 0 && p.maxGrazingAngle < M_PI / 2))
+        throw InputError("[detector] max_grazing_deg: must be in (0, 90)");
     p.morphKernel = requirePositiveInt(r, "morph_kernel_px");
     p.surfaceMargin = requireNonNegative(r, "surface_margin");
     p.centreOffset = requireNonNegative(r, "centre_offset");
@@ -106,6 +109,9 @@ perception::DetectorParams loadDetectorParams(const mrpt::config::CConfigFileBas
     p.sigmaAlong = requirePositive(r, "sigma_along");
     p.sigmaAcross = requirePositive(r, "sigma_across");
     p.imprintKeep = requireNonNegative(r, "imprint_keep_s");
+    p.seeThroughDepth = requireNonNegative(r, "see_through_depth");
+    p.bodyHalfWidth = requirePositive(r, "body_half_width");
+    p.bodyHeight = requirePositive(r, "body_height");
     p.pixelStride = requirePositiveInt(r, "pixel_stride");
     return p;
 }

@@ -92,7 +92,7 @@ public:
         for (const Group& g : groups)
             if (!g.pixels.empty())
                 acceptIfPerson(g);
-        rememberPeopleCells();
+        rememberPeopleCells(map);
         std::vector<PersonMeasurement> out;
         out.reserve(detections.size());
         for (const PersonDetection& d : detections)
@@ -142,10 +142,28 @@ private:
         imprintMax.array() += margin;
     }
 
-    void rememberPeopleCells() {
-        for (const PersonDetection& d : detections)
-            for (const int i : detectionPixels[std::size_t(&d - detections.data())])
-                imprint[cellKey(points[std::size_t(i)])] = {now, points[std::size_t(i)]};
+    void remember(const Eigen::Vector3f& p) { imprint[cellKey(p)] = {now, p}; }
+
+    /**
+     * The cells of each person's points, and the unknown cells of its body box (its interior,
+     * which it walks into when it walks away from the camera).
+     */
+    void rememberPeopleCells(const mapping::ExplorationMap& map) {
+        const float step = float(cellSize);
+        const float half = float(params.bodyHalfWidth);
+        for (std::size_t k = 0; k < detections.size(); ++k) {
+            for (const int i : detectionPixels[k])
+                remember(points[std::size_t(i)]);
+            const Eigen::Vector2f c = detections[k].measurement.position.cast<float>();
+            for (float x = c.x() - half; x <= c.x() + half; x += step)
+                for (float y = c.y() - half; y <= c.y() + half; y += step)
+                    for (float z = float(params.floorHeight); z <= float(params.bodyHeight);
+                         z += step) {
+                        const Eigen::Vector3f p(x, y, z);
+                        if (map.state(p.cast<double>()) == CellState::Unknown)
+                            remember(p);
+                    }
+        }
     }
 
     // --- per pixel --------------------------------------------------------------------------
@@ -155,6 +173,21 @@ private:
         const Eigen::Vector3f ray = (p - frame.origin).normalized();
         const Eigen::Vector3f q = p + float(params.surfaceMargin) * ray;
         return map.state(q.cast<double>()) == CellState::Occupied && !imprinted(q);
+    }
+
+    /**
+     * A point in unknown space whose ray has just crossed a cell the map holds occupied: what
+     * was there has moved on (a person walking away from the camera), as static things do not.
+     */
+    bool seenThroughOccupied(const Eigen::Vector3f& p, const mapping::ExplorationMap& map) const {
+        if (!(params.seeThroughDepth > 0))
+            return false;
+        const Eigen::Vector3f ray = (p - frame.origin).normalized();
+        for (float back = float(cellSize); back <= float(params.seeThroughDepth) + 1e-4f;
+             back += float(cellSize))
+            if (map.state((p - back * ray).cast<double>()) == CellState::Occupied)
+                return true;
+        return false;
     }
 
     PixelClass classify(const Eigen::Vector3f& p, const mapping::ExplorationMap& map) const {
@@ -168,7 +201,7 @@ private:
             case CellState::Unknown:
                 break;
         }
-        return imprinted(p) ? kEvidence : kUnexplained;
+        return imprinted(p) || seenThroughOccupied(p, map) ? kEvidence : kUnexplained;
     }
 
     void classifyPixels(const mrpt::obs::CObservation3DRangeScan& obs,
@@ -178,7 +211,8 @@ private:
         rows = (int(image.rows()) + stride - 1) / stride;
         cols = (int(image.cols()) + stride - 1) / stride;
         const auto& cam = obs.cameraParams;
-        const float fx = float(cam.fx()), fy = float(cam.fy());
+        fx = float(cam.fx());
+        const float fy = float(cam.fy());
         const float cx = float(cam.cx()), cy = float(cam.cy());
         pixelArea = float(stride * stride) / (fx * fy);  // times depth^2: m^2 per pixel
         depth.create(rows, cols);
@@ -210,12 +244,18 @@ private:
         }
     }
 
-    /** Pixels where the depth steps by more than depthJump belong to no object. */
+    /**
+     * Pixels where the depth steps by more than a surface could at the steepest grazing angle
+     * (or by depthJump, whichever is more) belong to no object: they split objects apart.
+     */
     void cutAtDepthJumps() {
         const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
         cv::morphologyEx(depth, depthStep, cv::MORPH_GRADIENT, kernel);
+        // A 3 x 3 gradient spans two pixels of depth * stride / fx each, times tan(grazing).
+        const double perMetre = 2.0 * params.pixelStride * std::tan(params.maxGrazingAngle) / fx;
+        cv::max(depth * perMetre, params.depthJump, stepLimit);
         cv::compare(classes, kIgnored, mask, cv::CMP_GT);
-        mask.setTo(0, depthStep > float(params.depthJump));
+        mask.setTo(0, depthStep > stepLimit);
     }
 
     void removeSpeckles() {
@@ -253,7 +293,10 @@ private:
         return groups;
     }
 
-    /** One person cut in pieces (by an occluder, or a depth step) becomes one group again. */
+    /**
+     * One person cut in pieces (two faces seen at a corner, an occluder, a depth step) becomes
+     * one group again, when the pieces are close and together still fit a person.
+     */
     std::vector<Group> mergeNearbyGroups(std::vector<Group> groups) const {
         const double limit2 = params.mergeDistance * params.mergeDistance;
         for (std::size_t a = 0; a < groups.size(); ++a) {
@@ -262,13 +305,31 @@ private:
                     continue;
                 const Eigen::Vector2d d =
                     groups[a].centroid().head<2>() - groups[b].centroid().head<2>();
-                if (d.squaredNorm() < limit2) {
-                    groups[a].absorb(groups[b]);
-                    b = a;  // its centroid moved: look at all others again
-                }
+                if (d.squaredNorm() >= limit2)
+                    continue;
+                Group merged = groups[a];
+                Group other = groups[b];
+                merged.absorb(other);
+                if (!extentsFitPerson(merged))
+                    continue;
+                groups[a] = std::move(merged);
+                groups[b] = Group{};
+                b = a;  // its centroid moved: look at all others again
             }
         }
         return groups;
+    }
+
+    /** Horizontal viewing direction from the sensor to the group's centroid. */
+    Eigen::Vector2d viewDirection(const Group& g) const {
+        const Eigen::Vector2d along =
+            g.centroid().head<2>() - frame.origin.head<2>().cast<double>();
+        return along.norm() < 1e-6 ? Eigen::Vector2d(1, 0) : along.normalized();
+    }
+
+    bool extentsFitPerson(const Group& g) const {
+        const Eigen::Vector2d e = horizontalExtents(g, viewDirection(g));
+        return e.x() <= params.maxWidth && e.y() <= params.maxDepthSpread;
     }
 
     /** Extents of a group across and along the horizontal viewing direction. */
@@ -287,23 +348,18 @@ private:
         return {cMax - cMin, aMax - aMin};
     }
 
-    bool sizeFitsPerson(const Group& g, const Eigen::Vector2d& extents) const {
+    bool sizeFitsPerson(const Group& g) const {
         const DetectorParams& p = params;
         return g.area >= p.minArea && g.zMax <= p.maxPersonTop &&
-               g.zMax - g.zMin >= p.minVerticalExtent && extents.x() <= p.maxWidth &&
-               extents.y() <= p.maxDepthSpread;
+               g.zMax - g.zMin >= p.minVerticalExtent && extentsFitPerson(g);
     }
 
     void acceptIfPerson(const Group& g) {
-        const Eigen::Vector3d centroid = g.centroid();
-        Eigen::Vector2d along = centroid.head<2>() - frame.origin.head<2>().cast<double>();
-        if (along.norm() < 1e-6)
-            return;
-        along.normalize();
         const double evidence = g.evidenceArea / g.area;
-        if (evidence < params.minEvidenceFraction ||
-            !sizeFitsPerson(g, horizontalExtents(g, along)))
+        if (evidence < params.minEvidenceFraction || !sizeFitsPerson(g))
             return;
+        const Eigen::Vector3d centroid = g.centroid();
+        const Eigen::Vector2d along = viewDirection(g);
         PersonDetection d;
         d.measurement.id = -1;
         d.measurement.position = centroid.head<2>() + params.centreOffset * along;
@@ -332,7 +388,8 @@ private:
     double cellSize = 0.2;
     int rows = 0, cols = 0;
     float pixelArea = 0.0f;
-    cv::Mat1f depth, depthStep;
+    float fx = 1.0f;
+    cv::Mat1f depth, depthStep, stepLimit;
     cv::Mat1b classes, mask;
     cv::Mat1i labels;
     std::vector<Eigen::Vector3f> points;  ///< world point of each grid pixel with a return

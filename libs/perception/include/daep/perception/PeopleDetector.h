@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -28,15 +29,20 @@ struct DetectorParams {
     double maxDepthSpread = 1.6;       ///< horizontal extent along the view, at most (m)
     double minArea = 0.08;             ///< visible surface of a cluster, at least (m^2)
     double minEvidenceFraction = 0.1;  ///< share of a cluster's surface the map contradicts
-    double depthJump = 0.25;           ///< depth step (m) between neighbours that splits objects
-    int morphKernel = 3;               ///< side (px) of the opening that removes speckles
-    double surfaceMargin = 0.15;  ///< a free point this close (m) before a static cell is noise
-    double centreOffset = 0.42;   ///< body centre behind the visible surface's centroid (m)
-    double mergeDistance = 0.6;   ///< clusters whose centres are closer (m) are one person
-    double sigmaAlong = 0.15;     ///< position std along the viewing direction (m)
-    double sigmaAcross = 0.10;    ///< position std across it (m)
-    double imprintKeep = 2.0;     ///< cells a person occupied count as dynamic this long (s)
-    int pixelStride = 1;          ///< look at every n-th pixel of every n-th row
+    double depthJump = 0.25;  ///< depth step (m) between neighbours that splits objects, at least
+    /** Steeper than this (rad from face-on) a surface's depth steps like a jump between objects. */
+    double maxGrazingAngle = 75.0 * M_PI / 180.0;
+    int morphKernel = 3;           ///< side (px) of the opening that removes speckles
+    double surfaceMargin = 0.15;   ///< a free point this close (m) before a static cell is noise
+    double centreOffset = 0.42;    ///< body centre behind the visible surface's centroid (m)
+    double mergeDistance = 0.8;    ///< clusters whose centres are closer (m) are one person
+    double sigmaAlong = 0.15;      ///< position std along the viewing direction (m)
+    double sigmaAcross = 0.10;     ///< position std across it (m)
+    double imprintKeep = 2.0;      ///< cells a person occupied count as dynamic this long (s)
+    double seeThroughDepth = 0.2;  ///< an occupied cell this close before an unknown point (m)
+    double bodyHalfWidth = 0.5;    ///< of the body box whose unknown cells are remembered (m)
+    double bodyHeight = 1.8;       ///< (m)
+    int pixelStride = 1;           ///< look at every n-th pixel of every n-th row
 };
 
 /** One accepted cluster, for evaluation and display. */
