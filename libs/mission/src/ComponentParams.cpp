@@ -109,6 +109,7 @@ perception::DetectorParams loadDetectorParams(const mrpt::config::CConfigFileBas
     p.sigmaAlong = requirePositive(r, "sigma_along");
     p.sigmaAcross = requirePositive(r, "sigma_across");
     p.imprintKeep = requireNonNegative(r, "imprint_keep_s");
+    p.minFreshFraction = requireNonNegative(r, "min_fresh_fraction");
     p.seeThroughDepth = requireNonNegative(r, "see_through_depth");
     p.bodyHalfWidth = requirePositive(r, "body_half_width");
     p.bodyHeight = requirePositive(r, "body_height");

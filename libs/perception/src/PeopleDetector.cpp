@@ -44,15 +44,17 @@ void validate(const DetectorParams& p) {
 
 /** Per-pixel class against the map. */
 enum PixelClass : std::uint8_t {
-    kIgnored = 0,      ///< no return, out of range or height band, or a static occupied cell
-    kUnexplained = 1,  ///< in unknown space: may be a person, may be unseen static geometry
-    kEvidence = 2,     ///< contradicts the static map: known free, or a recent person's cell
+    kIgnored = 0,      ///< no return, out of range or out of the height band
+    kStatic = 1,       ///< on a static surface the map holds occupied
+    kUnexplained = 2,  ///< in unknown space: may be a person, may be unseen static geometry
+    kRemembered = 3,   ///< in a cell a person was found in lately
+    kFresh = 4,        ///< contradicts the map now: known free, or seen through an occupied cell
 };
 
 /** Sums of one group of pixels (a connected component, or several merged). */
 struct Group {
     std::vector<int> pixels;  ///< indices into the pixel grid
-    double area = 0.0, evidenceArea = 0.0;
+    double area = 0.0, evidenceArea = 0.0, freshArea = 0.0;
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();  ///< area-weighted point sum
     double zMin = 1e9, zMax = -1e9;
 
@@ -61,6 +63,7 @@ struct Group {
         pixels.insert(pixels.end(), other.pixels.begin(), other.pixels.end());
         area += other.area;
         evidenceArea += other.evidenceArea;
+        freshArea += other.freshArea;
         weighted += other.weighted;
         zMin = std::min(zMin, other.zMin);
         zMax = std::max(zMax, other.zMax);
@@ -152,6 +155,8 @@ private:
         const float step = float(cellSize);
         const float half = float(params.bodyHalfWidth);
         for (std::size_t k = 0; k < detections.size(); ++k) {
+            if (detectionPixels[k].empty())
+                continue;
             for (const int i : detectionPixels[k])
                 remember(points[std::size_t(i)]);
             const Eigen::Vector2f c = detections[k].measurement.position.cast<float>();
@@ -195,13 +200,15 @@ private:
             return kIgnored;
         switch (map.state(p.cast<double>())) {
             case CellState::Free:
-                return staticSurfaceBehind(p, map) ? kIgnored : kEvidence;
+                return staticSurfaceBehind(p, map) ? kStatic : kFresh;
             case CellState::Occupied:
-                return imprinted(p) ? kEvidence : kIgnored;
+                return imprinted(p) ? kRemembered : kStatic;
             case CellState::Unknown:
                 break;
         }
-        return imprinted(p) || seenThroughOccupied(p, map) ? kEvidence : kUnexplained;
+        if (seenThroughOccupied(p, map))
+            return kFresh;
+        return imprinted(p) ? kRemembered : kUnexplained;
     }
 
     void classifyPixels(const mrpt::obs::CObservation3DRangeScan& obs,
@@ -254,7 +261,7 @@ private:
         // A 3 x 3 gradient spans two pixels of depth * stride / fx each, times tan(grazing).
         const double perMetre = 2.0 * params.pixelStride * std::tan(params.maxGrazingAngle) / fx;
         cv::max(depth * perMetre, params.depthJump, stepLimit);
-        cv::compare(classes, kIgnored, mask, cv::CMP_GT);
+        cv::compare(classes, kStatic, mask, cv::CMP_GT);
         mask.setTo(0, depthStep > stepLimit);
     }
 
@@ -284,7 +291,8 @@ private:
                 const double a = double(pixelArea) * depthRow[c] * depthRow[c];
                 g.pixels.push_back(i);
                 g.area += a;
-                g.evidenceArea += classRow[c] == kEvidence ? a : 0.0;
+                g.evidenceArea += classRow[c] >= kRemembered ? a : 0.0;
+                g.freshArea += classRow[c] == kFresh ? a : 0.0;
                 g.weighted += a * p.cast<double>();
                 g.zMin = std::min(g.zMin, double(p.z()));
                 g.zMax = std::max(g.zMax, double(p.z()));
@@ -374,8 +382,11 @@ private:
         d.evidenceFraction = evidence;
         d.pixels = int(g.pixels.size());
         detections.push_back(d);
-        detectionPixels.resize(detections.size());
-        detectionPixels.back() = g.pixels;
+        // Remembering only what the map contradicts now bounds how long anything the map
+        // explains (a false detection, a person standing still) is kept alive: imprintKeep.
+        detectionPixels.emplace_back();
+        if (g.freshArea >= params.minFreshFraction * g.area)
+            detectionPixels.back() = g.pixels;
     }
 
     struct ImprintCell {

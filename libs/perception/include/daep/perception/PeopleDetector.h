@@ -32,17 +32,18 @@ struct DetectorParams {
     double depthJump = 0.25;  ///< depth step (m) between neighbours that splits objects, at least
     /** Steeper than this (rad from face-on) a surface's depth steps like a jump between objects. */
     double maxGrazingAngle = 75.0 * M_PI / 180.0;
-    int morphKernel = 3;           ///< side (px) of the opening that removes speckles
-    double surfaceMargin = 0.15;   ///< a free point this close (m) before a static cell is noise
-    double centreOffset = 0.42;    ///< body centre behind the visible surface's centroid (m)
-    double mergeDistance = 0.8;    ///< clusters whose centres are closer (m) are one person
-    double sigmaAlong = 0.15;      ///< position std along the viewing direction (m)
-    double sigmaAcross = 0.10;     ///< position std across it (m)
-    double imprintKeep = 2.0;      ///< cells a person occupied count as dynamic this long (s)
-    double seeThroughDepth = 0.2;  ///< an occupied cell this close before an unknown point (m)
-    double bodyHalfWidth = 0.5;    ///< of the body box whose unknown cells are remembered (m)
-    double bodyHeight = 1.8;       ///< (m)
-    int pixelStride = 1;           ///< look at every n-th pixel of every n-th row
+    int morphKernel = 3;             ///< side (px) of the opening that removes speckles
+    double surfaceMargin = 0.15;     ///< a free point this close (m) before a static cell is noise
+    double centreOffset = 0.42;      ///< body centre behind the visible surface's centroid (m)
+    double mergeDistance = 0.8;      ///< clusters whose centres are closer (m) are one person
+    double sigmaAlong = 0.15;        ///< position std along the viewing direction (m)
+    double sigmaAcross = 0.10;       ///< position std across it (m)
+    double minFreshFraction = 0.05;  ///< share contradicting the map now that refreshes the memory
+    double imprintKeep = 2.0;        ///< cells a person occupied count as dynamic this long (s)
+    double seeThroughDepth = 0.2;    ///< an occupied cell this close before an unknown point (m)
+    double bodyHalfWidth = 0.5;      ///< of the body box whose unknown cells are remembered (m)
+    double bodyHeight = 1.8;         ///< (m)
+    int pixelStride = 1;             ///< look at every n-th pixel of every n-th row
 };
 
 /** One accepted cluster, for evaluation and display. */
