@@ -65,10 +65,22 @@ TEST_F(SensedPeople, WallsAndOtherPeopleHideAPerson) {
     EXPECT_FALSE(sees(queue, 1));
 }
 
+/** The [detector] section of the defaults file, as it is. */
+std::string detectorSection() {
+    std::ifstream in(std::string(DAEP_SOURCE_DIR) + "/share/daep/config/defaults.ini");
+    std::stringstream all;
+    all << in.rdbuf();
+    const std::string text = all.str();
+    const std::size_t from = text.find("\n[detector]") + 1;
+    return text.substr(from, text.find("\n[", from + 1) - from + 1);
+}
+
 std::string trackingSection(const std::string& source) {
     return "[tracking]\npeople_source = " + source +
-           "\nsensed_range = 5\nsensed_noise_sigma = 0.05\naccel_noise = 0.02\n"
-           "measurement_sigma = 0.02\ninitial_speed_sigma = 1\ndrop_after_s = 2\n";
+           "\nsensed_range = 5\nsensed_noise_sigma = 0.05\n"
+           "[tracker]\naccel_noise = 0.02\nmeasurement_sigma = 0.02\ninitial_speed_sigma = 1\n"
+           "drop_after_s = 2\ngate_chi2 = 9.21\nconfirm_hits = 3\ntentative_drop_after_s = 1\n" +
+           detectorSection();
 }
 
 TEST_F(SensedPeople, SensedTracksOnlyWhoIsSeenAndForgetsThemAfterTheTimeout) {

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -19,6 +20,7 @@
 #include "daep/common/Error.h"
 #include "daep/mapping/DepthUnprojection.h"
 #include "daep/mapping/ExplorationMap.h"
+#include "daep/mission/DetectionEval.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/Mission.h"
 #include "daep/mission/RawlogMission.h"
@@ -55,6 +57,13 @@ std::vector<std::string> lines(const fs::path& p) {
     for (std::string l; std::getline(f, l);)
         out.push_back(l);
     return out;
+}
+
+fs::path out(const std::ostringstream& text) {
+    static int n = 0;
+    const fs::path p = freshDir("csv" + std::to_string(n++)) / "frames.csv";
+    std::ofstream(p) << text.str();
+    return p;
 }
 
 std::vector<std::string> fields(const std::string& line) {
@@ -182,6 +191,39 @@ TEST(RawlogSource, ShippedDatasetReplaysWithAPlanner) {
         EXPECT_TRUE(fs::exists(out / file)) << file;
     EXPECT_EQ(lines(out / "trajectory.csv").size(), 103u);
     EXPECT_EQ(lines(out / "timeseries.csv").size(), 22u);  // header + t = 0..20
+}
+
+TEST(RawlogSource, ReplayTracksThePersonOfTheShippedDataset) {
+    const fs::path out = freshDir("people");
+    RawlogMission mission(replayConfig(kDataset, {"rawlog.world=tiny_room.yaml"}), out, nullptr);
+    mission.run();
+    const auto rows = lines(out / "people.csv");
+    ASSERT_GE(rows.size(), 6u);
+    EXPECT_EQ(rows[0], "t,track,x,y,vx,vy,sigma");
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        const auto f = fields(rows[i]);
+        ASSERT_EQ(f.size(), 7u) << rows[i];
+        EXPECT_GE(std::stoi(f[1]), 0);
+        EXPECT_GT(std::stod(f[6]), 0.0);
+        EXPECT_LT(std::hypot(std::stod(f[4]), std::stod(f[5])), 1.5) << rows[i];
+    }
+}
+
+TEST(DetectionEval, ScoresTheShippedDatasetAgainstItsTruePeople) {
+    const auto config = ExperimentConfig::fromFile(kTinyRoom);
+    std::ostringstream csv;
+    const auto s = daep::mission::evaluateDetection(config, kDataset, {}, &csv);
+    EXPECT_EQ(s.frames, 102u);
+    EXPECT_EQ(lines(out(csv)).size(), 103u);
+    EXPECT_GE(s.truePositives, 5u);
+    EXPECT_GE(s.found, 3u);
+    EXPECT_LE(s.found, s.eligible);
+    EXPECT_EQ(s.truePositives + s.falsePositives, s.detections);
+    ASSERT_FALSE(s.errors.empty());
+    EXPECT_LT(*std::min_element(s.errors.begin(), s.errors.end()), 0.3);
+    EXPECT_GE(s.confirmedTrackMatches, 3u);
+    // A rawlog without true people cannot be scored.
+    EXPECT_THROW(daep::mission::evaluateDetection(config, kKinect, {}), daep::InputError);
 }
 
 /** The sensory-frames format (CActionCollection + CSensoryFrame) maps like observations. */

@@ -2,6 +2,9 @@
 
 #include <Eigen/Dense>
 
+#include <random>
+
+#include "daep/perception/Assignment.h"
 #include "daep/perception/PeopleTracker.h"
 #include "daep/perception/PersonTrack.h"
 
@@ -84,4 +87,140 @@ TEST(PeopleTracker, PredictsUnseenPeopleUntilTheTimeoutThenDropsThem) {
     tracker.update(2.5, {at(1, 0.875, 0)});
     ASSERT_EQ(tracker.size(), 1u);
     EXPECT_EQ(tracker.forecasts().front().id, 1);
+}
+
+namespace {
+
+PersonMeasurement detection(double x, double y, double sigma = 0.1) {
+    PersonMeasurement m;
+    m.id = -1;
+    m.position = {x, y};
+    m.covariance = Eigen::Matrix2d::Identity() * sigma * sigma;
+    return m;
+}
+
+const PersonForecast* nearest(const std::vector<PersonForecast>& tracks, double t,
+                              const Eigen::Vector2d& p) {
+    const PersonForecast* best = nullptr;
+    for (const PersonForecast& f : tracks)
+        if (!best || (f.at(t).mean - p).norm() < (best->at(t).mean - p).norm())
+            best = &f;
+    return best;
+}
+
+}  // namespace
+
+TEST(Assignment, FindsTheMinimumTotalCostWhereGreedyDoesNot) {
+    Eigen::MatrixXd cost(2, 2);
+    cost << 1.0, 2.0,  // greedy takes (0,0) = 1, then (1,1) = 10: total 11
+        1.5, 10.0;     // optimum (0,1) + (1,0) = 3.5
+    const std::vector<int> a = solveAssignment(cost);
+    EXPECT_EQ(a, (std::vector<int>{1, 0}));
+}
+
+TEST(Assignment, HandlesMoreRowsOrMoreColumns) {
+    Eigen::MatrixXd wide(2, 3);
+    wide << 5, 1, 9,  //
+        1, 5, 9;
+    EXPECT_EQ(solveAssignment(wide), (std::vector<int>{1, 0}));
+    const std::vector<int> tall = solveAssignment(wide.transpose());
+    EXPECT_EQ(tall, (std::vector<int>{1, 0, -1}));
+    EXPECT_TRUE(solveAssignment(Eigen::MatrixXd(0, 3)).empty());
+    EXPECT_EQ(solveAssignment(Eigen::MatrixXd(2, 0)), (std::vector<int>{-1, -1}));
+}
+
+TEST(PeopleTracker, NewAnonymousTracksAreTentativeUntilConfirmed) {
+    TrackerParams params;
+    params.confirmHits = 3;
+    PeopleTracker tracker(params);
+    tracker.update(0.0, {detection(1, 1)});
+    EXPECT_TRUE(tracker.forecasts().empty());
+    ASSERT_EQ(tracker.tentativeForecasts().size(), 1u);
+    tracker.update(0.2, {detection(1.07, 1)});
+    EXPECT_TRUE(tracker.forecasts().empty());
+    tracker.update(0.4, {detection(1.14, 1)});
+    ASSERT_EQ(tracker.forecasts().size(), 1u);
+    EXPECT_TRUE(tracker.tentativeForecasts().empty());
+    EXPECT_EQ(tracker.size(), 1u);  // one track all along, not one per detection
+}
+
+TEST(PeopleTracker, ClutterSeenOnceDiesQuicklyAConfirmedTrackLivesToTheTimeout) {
+    TrackerParams params;
+    params.confirmHits = 2;
+    params.tentativeDropAfter = 0.5;
+    params.dropAfter = 3.0;
+    PeopleTracker tracker(params);
+    tracker.update(0.0, {detection(0, 0), detection(4, 4)});
+    tracker.update(0.2, {detection(0.07, 0)});
+    EXPECT_EQ(tracker.size(), 2u);
+    EXPECT_EQ(tracker.confirmedCount(), 1u);
+    tracker.update(0.6, {});
+    EXPECT_EQ(tracker.size(), 1u);  // the clutter at (4, 4), unseen for 0.6 s > 0.5 s
+    tracker.update(3.2, {});
+    EXPECT_EQ(tracker.size(), 1u);  // the person: unseen for exactly the timeout
+    tracker.update(3.3, {});
+    EXPECT_EQ(tracker.size(), 0u);
+}
+
+TEST(PeopleTracker, GatingRejectsAnOutlierWhichStartsATrackOfItsOwn) {
+    TrackerParams params;
+    PeopleTracker tracker(params);
+    for (int k = 0; k <= 10; ++k)
+        tracker.update(0.2 * k, {detection(0.07 * k, 0.0)});
+    ASSERT_EQ(tracker.forecasts().size(), 1u);
+    const PersonForecast before = tracker.forecasts().front();
+    tracker.update(2.2, {detection(2.5, 0.0)});  // 1.7 m from the prediction: not this person
+    const std::vector<PersonForecast> after = tracker.forecasts();
+    ASSERT_EQ(after.size(), 1u);
+    EXPECT_EQ(after.front().id, before.id);
+    EXPECT_EQ(after.front().time, before.time);  // not updated by the outlier
+    EXPECT_EQ(tracker.tentativeForecasts().size(), 1u);
+}
+
+TEST(PeopleTracker, ASecondDetectionInsideAConfirmedGateStartsNoTrack) {
+    PeopleTracker tracker(TrackerParams{});
+    for (int k = 0; k <= 5; ++k)
+        tracker.update(0.2 * k, {detection(0.07 * k, 0.0)});
+    // The same person seen twice (cut by an occluder): both inside the gate, one updates.
+    tracker.update(1.2, {detection(0.42, 0.0), detection(0.42, 0.25)});
+    EXPECT_EQ(tracker.size(), 1u);
+}
+
+TEST(PeopleTracker, KeepsIdentitiesThroughACrossingOfTwoPeople) {
+    TrackerParams params;
+    PeopleTracker tracker(params);
+    // A walks +x along y = 0, B walks -x along y = 0.6; they pass each other at t = 4 s.
+    const auto a = [](double t) { return Eigen::Vector2d(-1.4 + 0.35 * t, 0.0); };
+    const auto b = [](double t) { return Eigen::Vector2d(1.4 - 0.35 * t, 0.6); };
+    std::mt19937 rng(5);
+    std::normal_distribution<double> noise(0.0, 0.08);
+    int idA = -1, idB = -1;
+    for (int k = 0; k <= 40; ++k) {
+        const double t = 0.2 * k;
+        // Listed in alternating order, so that order does not tell them apart.
+        std::vector<PersonMeasurement> m = {
+            detection(a(t).x() + noise(rng), a(t).y() + noise(rng)),
+            detection(b(t).x() + noise(rng), b(t).y() + noise(rng))};
+        if (k % 2)
+            std::swap(m[0], m[1]);
+        tracker.update(t, m);
+        if (k == 5) {
+            ASSERT_EQ(tracker.forecasts().size(), 2u);
+            idA = nearest(tracker.forecasts(), t, a(t))->id;
+            idB = nearest(tracker.forecasts(), t, b(t))->id;
+            ASSERT_NE(idA, idB);
+        }
+    }
+    const double end = 8.0;
+    ASSERT_EQ(tracker.forecasts().size(), 2u);
+    EXPECT_EQ(nearest(tracker.forecasts(), end, a(end))->id, idA);
+    EXPECT_EQ(nearest(tracker.forecasts(), end, b(end))->id, idB);
+    EXPECT_LT((nearest(tracker.forecasts(), end, a(end))->at(end).mean - a(end)).norm(), 0.2);
+}
+
+TEST(PeopleTracker, KnownIdsAndAnonymousDetectionsDoNotMix) {
+    PeopleTracker tracker(TrackerParams{});
+    tracker.update(0.0, {at(7, 0, 0), detection(0.05, 0)});
+    EXPECT_EQ(tracker.size(), 2u);  // the anonymous one is not given to the known id
+    EXPECT_EQ(tracker.confirmedCount(), 1u);
 }

@@ -12,6 +12,20 @@ double requirePositive(const ConfigReader& r, const std::string& key) {
     return v;
 }
 
+double requireNonNegative(const ConfigReader& r, const std::string& key) {
+    const double v = r.requireDouble(key);
+    if (!(v >= 0))
+        throw InputError("[" + r.section() + "] " + key + ": must be >= 0");
+    return v;
+}
+
+int requirePositiveInt(const ConfigReader& r, const std::string& key) {
+    const int v = r.requireInt(key);
+    if (v < 1)
+        throw InputError("[" + r.section() + "] " + key + ": must be >= 1");
+    return v;
+}
+
 }  // namespace
 
 sim::CameraParams loadCameraParams(const mrpt::config::CConfigFileBase& cfg) {
@@ -65,6 +79,54 @@ mapping::MapParams loadMapParams(const mrpt::config::CConfigFileBase& cfg) {
         throw InputError("[map] prob_hit: must be in (0.5, 1)");
     if (p.probMiss <= 0 || p.probMiss >= 0.5)
         throw InputError("[map] prob_miss: must be in (0, 0.5)");
+    return p;
+}
+
+perception::DetectorParams loadDetectorParams(const mrpt::config::CConfigFileBase& cfg) {
+    const ConfigReader r(cfg, "detector");
+    perception::DetectorParams p;
+    p.maxRange = requirePositive(r, "max_range");
+    p.floorHeight = r.requireDouble("floor_height");
+    p.ceilingHeight = r.requireDouble("ceiling_height");
+    if (!(p.ceilingHeight > p.floorHeight))
+        throw InputError("[detector] ceiling_height: must be above floor_height");
+    p.maxPersonTop = requirePositive(r, "max_person_top");
+    p.minVerticalExtent = requireNonNegative(r, "min_vertical_extent");
+    p.maxWidth = requirePositive(r, "max_width");
+    p.maxDepthSpread = requirePositive(r, "max_depth_spread");
+    p.minArea = requireNonNegative(r, "min_area");
+    p.minEvidenceFraction = requireNonNegative(r, "min_evidence_fraction");
+    if (p.minEvidenceFraction > 1)
+        throw InputError("[detector] min_evidence_fraction: must be in [0, 1]");
+    p.depthJump = requirePositive(r, "depth_jump");
+    p.maxGrazingAngle = r.requireAngleDeg("max_grazing_deg");
+    if (!(p.maxGrazingAngle > 0 && p.maxGrazingAngle < M_PI / 2))
+        throw InputError("[detector] max_grazing_deg: must be in (0, 90)");
+    p.morphKernel = requirePositiveInt(r, "morph_kernel_px");
+    p.surfaceMargin = requireNonNegative(r, "surface_margin");
+    p.centreOffset = requireNonNegative(r, "centre_offset");
+    p.mergeDistance = requireNonNegative(r, "merge_distance");
+    p.sigmaAlong = requirePositive(r, "sigma_along");
+    p.sigmaAcross = requirePositive(r, "sigma_across");
+    p.imprintKeep = requireNonNegative(r, "imprint_keep_s");
+    p.minFreshFraction = requireNonNegative(r, "min_fresh_fraction");
+    p.seeThroughDepth = requireNonNegative(r, "see_through_depth");
+    p.bodyHalfWidth = requirePositive(r, "body_half_width");
+    p.bodyHeight = requirePositive(r, "body_height");
+    p.pixelStride = requirePositiveInt(r, "pixel_stride");
+    return p;
+}
+
+perception::TrackerParams loadTrackerParams(const mrpt::config::CConfigFileBase& cfg) {
+    const ConfigReader r(cfg, "tracker");
+    perception::TrackerParams p;
+    p.predictor.accelNoise = requireNonNegative(r, "accel_noise");
+    p.predictor.measurementSigma = requirePositive(r, "measurement_sigma");
+    p.predictor.initialSpeedSigma = requirePositive(r, "initial_speed_sigma");
+    p.dropAfter = requirePositive(r, "drop_after_s");
+    p.gateChi2 = requirePositive(r, "gate_chi2");
+    p.confirmHits = requirePositiveInt(r, "confirm_hits");
+    p.tentativeDropAfter = requirePositive(r, "tentative_drop_after_s");
     return p;
 }
 

@@ -124,6 +124,8 @@ struct Mission::Impl {
         if (!world.people.empty())
             caster.setPeople(people.states(), people.params().bodySize);
         camera.render(caster, drone.pose(), t, noiseRng, frame);
+        if (planner->usesPeople() && peopleInput.detects())
+            peopleInput.detect(t, frame, drone.pose(), map);
         map.insertObservation(frame, drone.pose());
         if (planner->usesPeople())
             peopleInput.observe(t, people.states(), caster, camera.sensorPose(drone.pose()),

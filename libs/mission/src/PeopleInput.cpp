@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "ComponentParams.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/world/RayCaster.h"
@@ -38,22 +39,28 @@ PeopleInputParams PeopleInputParams::fromConfig(const mrpt::config::CConfigFileB
     const ConfigReader r(config, "tracking");
     PeopleInputParams p;
     p.source = r.requireString("people_source");
-    if (p.source != "ground_truth" && p.source != "sensed")
+    if (p.source != "ground_truth" && p.source != "sensed" && p.source != "detected")
         throw InputError("[tracking] people_source: '" + p.source +
-                         "' must be ground_truth or sensed");
+                         "' must be ground_truth, sensed or detected");
     p.sensedRange = requirePositive(r, "sensed_range");
     p.sensedNoiseSigma = r.requireDouble("sensed_noise_sigma");
     if (p.sensedNoiseSigma < 0)
         throw InputError("[tracking] sensed_noise_sigma: must be >= 0");
-    p.tracker.predictor.accelNoise = requirePositive(r, "accel_noise");
-    p.tracker.predictor.measurementSigma = requirePositive(r, "measurement_sigma");
-    p.tracker.predictor.initialSpeedSigma = requirePositive(r, "initial_speed_sigma");
-    p.tracker.dropAfter = requirePositive(r, "drop_after_s");
+    p.tracker = loadTrackerParams(config);
+    p.detector = loadDetectorParams(config);
     return p;
 }
 
 PeopleInput::PeopleInput(const PeopleInputParams& params, std::uint64_t seed)
-    : params_(params), tracker_(params.tracker), rng_(seed) {}
+    : params_(params), tracker_(params.tracker), detector_(params.detector), rng_(seed) {}
+
+void PeopleInput::detect(double t, const mrpt::obs::CObservation3DRangeScan& frame,
+                         const FlatPose& robot, const mapping::ExplorationMap& map) {
+    const std::vector<perception::PersonMeasurement> found = detector_.detect(frame, robot, map);
+    measurements_ += static_cast<long>(found.size());
+    tracker_.update(t, found);
+    forecasts_ = tracker_.forecasts();
+}
 
 bool PeopleInput::visible(const world::RayCaster& scene, const FlatPose& sensor,
                           const sim::CameraParams& camera, double range,
@@ -80,6 +87,8 @@ bool PeopleInput::visible(const world::RayCaster& scene, const FlatPose& sensor,
 void PeopleInput::observe(double t, const std::vector<world::PersonState>& truth,
                           const world::RayCaster& scene, const FlatPose& sensor,
                           const sim::CameraParams& camera, const Eigen::Vector3d& bodySize) {
+    if (detects())
+        return;
     std::vector<perception::PersonMeasurement> seen;
     const bool sensed = params_.source == "sensed";
     const double sigma = sensed ? params_.sensedNoiseSigma : 0.0;

@@ -3,9 +3,11 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
+#include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <fstream>
 #include <iomanip>
 #include <optional>
 #include <ostream>
@@ -21,6 +23,8 @@
 #include "daep/eval/Statistics.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
+#include "daep/perception/PeopleDetector.h"
+#include "daep/perception/PeopleTracker.h"
 #include "daep/planning/Planner.h"
 
 namespace daep::mission {
@@ -80,6 +84,41 @@ RawlogParams loadRawlogParams(const ExperimentConfig& experiment) {
     return p;
 }
 
+/** Standard deviation (m) along the major axis of a position covariance. */
+double majorSigma(const Eigen::Matrix2d& covariance) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(covariance, Eigen::EigenvaluesOnly);
+    return std::sqrt(std::max(0.0, eig.eigenvalues().maxCoeff()));
+}
+
+/** people.csv: the confirmed tracks after every depth frame. */
+class PeopleCsv {
+public:
+    explicit PeopleCsv(const std::string& path) : path_(path), out_(path) {
+        if (!out_)
+            throw std::runtime_error("cannot write " + path);
+        out_ << "t,track,x,y,vx,vy,sigma\n";
+    }
+
+    void write(double t, const std::vector<perception::PersonForecast>& tracks) {
+        for (const perception::PersonForecast& f : tracks) {
+            const perception::PositionPrediction p = f.at(t);
+            out_ << t << ',' << f.id << ',' << p.mean.x() << ',' << p.mean.y() << ','
+                 << f.velocity().x() << ',' << f.velocity().y() << ',' << majorSigma(p.covariance)
+                 << '\n';
+        }
+    }
+
+    void flush() {
+        out_.flush();
+        if (!out_)
+            throw std::runtime_error("cannot write " + path_);
+    }
+
+private:
+    std::string path_;
+    std::ofstream out_;
+};
+
 std::string planStatus(const planning::Plan& plan) {
     return plan.status == planning::Plan::Status::Finished ? "finished" : "path";
 }
@@ -106,7 +145,10 @@ struct RawlogMission::Impl {
           log(logStream),
           recorder(outputDir, eval::PlansFormat::Replay),
           outputs(loadOutputParams(config.config())),
-          scene(outputs, outputDir, logStream) {
+          scene(outputs, outputDir, logStream),
+          detector(loadDetectorParams(config.config())),
+          tracker(loadTrackerParams(config.config())),
+          peopleCsv(recorder.path("people.csv")) {
         if (!reader.next(frame))
             throw InputError(
                 params.file + ": no depth frames (CObservation3DRangeScan with a " + "range image" +
@@ -137,12 +179,14 @@ struct RawlogMission::Impl {
     double coveragePercent() const { return 100.0 * map->knownVolumeInBox() / boxVolume; }
 
     /**
-     * Integrates the current frame, then records and plans what is due at its time. People
-     * are not detected yet: a tracker would take each frame here (the depth image and robot
-     * pose) after the map update and hand its tracks to context() for the planner.
+     * Detects and tracks the people in the current frame (against the map before the frame,
+     * which is what they contradict), integrates the frame, then records and plans what is due
+     * at its time.
      */
     void handleFrame() {
         t = frame.stamp - firstStamp;
+        tracker.update(t, detector.detect(*frame.depth, frame.robot, *map));
+        peopleCsv.write(t, tracker.forecasts());
         map->insertObservation(*frame.depth, frame.robot);
         ++frameCount;
         if (frameCount > 1)
@@ -243,6 +287,7 @@ struct RawlogMission::Impl {
 
     void writeOutputs(const eval::RunSummary& summary) {
         recorder.flush();
+        peopleCsv.flush();
         recorder.writeSummary(summary);
         recorder.writeTiming(summary.wallTime, t);
         recorder.writeCollisions();
@@ -267,6 +312,9 @@ struct RawlogMission::Impl {
     eval::RunRecorder recorder;
     OutputParams outputs;
     SceneExporter scene;
+    perception::PeopleDetector detector;
+    perception::PeopleTracker tracker;
+    PeopleCsv peopleCsv;
     RawlogFrame frame;
     Aabb box;
     double boxVolume = 0.0;

@@ -11,6 +11,7 @@
 
 #include <deque>
 #include <filesystem>
+#include <map>
 
 #include "daep/common/Error.h"
 
@@ -26,6 +27,17 @@ FlatPose flatPose(const mrpt::poses::CPose3D& p) {
     return f;
 }
 
+/** i for a label PERSON_<i>, else -1. */
+int personIndex(const std::string& label) {
+    const std::string prefix = "PERSON_";
+    if (label.size() <= prefix.size() || label.compare(0, prefix.size(), prefix) != 0)
+        return -1;
+    const std::string digits = label.substr(prefix.size());
+    if (digits.size() > 6 || digits.find_first_not_of("0123456789") != std::string::npos)
+        return -1;
+    return std::stoi(digits);
+}
+
 }  // namespace
 
 struct RawlogReader::Impl {
@@ -37,6 +49,7 @@ struct RawlogReader::Impl {
     double pendingStamp = 0.0;
     FlatPose latestPose;
     bool hasPose = false;
+    std::map<int, FlatPose> people;
 
     [[noreturn]] void fail(const std::string& what) const { throw InputError(path + ": " + what); }
 
@@ -89,11 +102,17 @@ struct RawlogReader::Impl {
 
     bool takePose(const ObservationPtr& o) {
         auto pose = std::dynamic_pointer_cast<mrpt::obs::CObservationRobotPose>(o);
-        if (!pose || pose->sensorLabel != poseLabel)
+        if (!pose)
             return false;
-        latestPose = flatPose(pose->pose.mean);
-        hasPose = true;
-        return true;
+        if (pose->sensorLabel == poseLabel) {
+            latestPose = flatPose(pose->pose.mean);
+            hasPose = true;
+            return true;
+        }
+        const int person = personIndex(pose->sensorLabel);
+        if (person >= 0)
+            people[person] = flatPose(pose->pose.mean);
+        return person >= 0;
     }
 
     void emit(RawlogFrame& frame) {
@@ -101,6 +120,7 @@ struct RawlogReader::Impl {
         frame.depth = std::move(pending);
         frame.hasPose = hasPose;
         frame.robot = hasPose ? latestPose : FlatPose{};
+        frame.people = people;
         pending.reset();
     }
 };

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -18,6 +19,11 @@ struct RawlogFrame {
     std::shared_ptr<mrpt::obs::CObservation3DRangeScan> depth;
     FlatPose robot;        ///< identity when the rawlog gave no pose at or before `stamp`
     bool hasPose = false;  ///< a pose observation gave `robot`
+    /**
+     * Ground truth of a simulated run: the latest pose of each CObservationRobotPose labelled
+     * PERSON_<i> at or before `stamp`, keyed by i (position = body centre, yaw = heading).
+     */
+    std::map<int, FlatPose> people;
 };
 
 /**
@@ -27,7 +33,8 @@ struct RawlogFrame {
  * image (and the given sensor label, if one is given). Its robot pose is the latest
  * CObservationRobotPose labelled poseLabel whose timestamp is at or before the frame's: pose
  * observations recorded just after the frame with the same timestamp (our simulator writes
- * the frame, then the pose) still pair with it. Errors are daep::InputError naming the file.
+ * the frame, then the pose) still pair with it; so do the people's PERSON_<i> poses. Errors are
+ * daep::InputError naming the file.
  */
 class RawlogReader {
 public:

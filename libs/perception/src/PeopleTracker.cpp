@@ -1,13 +1,38 @@
 #include "daep/perception/PeopleTracker.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
+#include "daep/perception/Assignment.h"
+
 namespace daep::perception {
+namespace {
+
+/** Cost of a pair outside the gate: larger than any sum of gated costs, so never preferred. */
+constexpr double kOutsideGate = 1e9;
+
+struct Innovation {
+    double mahalanobis2 = 0.0;
+    double logDet = 0.0;
+};
+
+Innovation innovation(const PersonTrack& track, double time, const PersonMeasurement& m) {
+    const PositionPrediction p = track.predict(std::max(time, track.lastUpdate()));
+    const Eigen::Matrix2d s = p.covariance + m.covariance;
+    const Eigen::Vector2d r = m.position - p.mean;
+    return {r.dot(s.ldlt().solve(r)), std::log(s.determinant())};
+}
+
+}  // namespace
 
 PeopleTracker::PeopleTracker(const TrackerParams& params) : params_(params) {
     if (params.dropAfter <= 0)
         throw std::invalid_argument("PeopleTracker: dropAfter must be positive");
+    if (!(params.gateChi2 > 0) || params.confirmHits < 1 || !(params.tentativeDropAfter > 0))
+        throw std::invalid_argument(
+            "PeopleTracker: gateChi2, confirmHits and tentativeDropAfter must be positive");
 }
 
 PeopleTracker::Track* PeopleTracker::findById(int id) {
@@ -21,21 +46,73 @@ void PeopleTracker::updateOrStart(double time, int id, const PersonMeasurement& 
     if (Track* t = findById(id)) {
         t->filter.update(time, m.position, m.covariance);
         t->lastSeen = time;
+        ++t->hits;
         return;
     }
-    tracks_.push_back({id, PersonTrack(params_.predictor, time, m.position), time});
+    tracks_.push_back({id, PersonTrack(params_.predictor, time, m.position), time, 1, false});
+}
+
+/** A new track starts with the measurement's own position uncertainty. */
+void PeopleTracker::startAnonymous(double time, const PersonMeasurement& m) {
+    PredictorParams p = params_.predictor;
+    p.measurementSigma = std::sqrt(std::max(0.5 * m.covariance.trace(), 1e-12));
+    tracks_.push_back({nextAnonymousId_++, PersonTrack(p, time, m.position), time, 1, true});
+}
+
+void PeopleTracker::associateAnonymous(double time,
+                                       const std::vector<PersonMeasurement>& anonymous) {
+    std::vector<Track*> candidates;
+    for (Track& t : tracks_)
+        if (t.anonymous)
+            candidates.push_back(&t);
+    Eigen::MatrixXd cost(candidates.size(), anonymous.size());
+    std::vector<bool> nearConfirmed(anonymous.size(), false);
+    for (std::size_t r = 0; r < candidates.size(); ++r) {
+        for (std::size_t c = 0; c < anonymous.size(); ++c) {
+            const Innovation in = innovation(candidates[r]->filter, time, anonymous[c]);
+            const bool gated = in.mahalanobis2 <= params_.gateChi2;
+            cost(r, c) = gated ? in.mahalanobis2 + in.logDet : kOutsideGate;
+            if (gated && confirmed(*candidates[r]))
+                nearConfirmed[c] = true;
+        }
+    }
+    const std::vector<int> columnOfRow = solveAssignment(cost);
+    std::vector<bool> used(anonymous.size(), false);
+    for (std::size_t r = 0; r < candidates.size(); ++r) {
+        const int c = columnOfRow[r];
+        if (c < 0 || cost(r, c) >= kOutsideGate)
+            continue;
+        Track& t = *candidates[r];
+        const PersonMeasurement& m = anonymous[std::size_t(c)];
+        t.filter.update(time, m.position, m.covariance);
+        t.lastSeen = time;
+        ++t.hits;
+        used[std::size_t(c)] = true;
+    }
+    for (std::size_t c = 0; c < anonymous.size(); ++c)
+        if (!used[c] && !nearConfirmed[c])
+            startAnonymous(time, anonymous[c]);
 }
 
 void PeopleTracker::update(double time, const std::vector<PersonMeasurement>& measurements) {
-    for (const PersonMeasurement& m : measurements)
-        updateOrStart(time, m.id >= 0 ? m.id : nextAnonymousId_++, m);
+    std::vector<PersonMeasurement> anonymous;
+    for (const PersonMeasurement& m : measurements) {
+        if (m.id >= 0)
+            updateOrStart(time, m.id, m);
+        else
+            anonymous.push_back(m);
+    }
+    if (!anonymous.empty())
+        associateAnonymous(time, anonymous);
     dropStale(time);
 }
 
 void PeopleTracker::dropStale(double time) {
     tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
                                  [&](const Track& t) {
-                                     return time - t.lastSeen > params_.dropAfter;
+                                     const double limit = confirmed(t) ? params_.dropAfter
+                                                                       : params_.tentativeDropAfter;
+                                     return time - t.lastSeen > limit;
                                  }),
                   tracks_.end());
 }
@@ -44,8 +121,30 @@ std::vector<PersonForecast> PeopleTracker::forecasts() const {
     std::vector<PersonForecast> out;
     out.reserve(tracks_.size());
     for (const Track& t : tracks_)
-        out.push_back(t.filter.forecast(t.id));
+        if (confirmed(t))
+            out.push_back(t.filter.forecast(t.id));
     return out;
+}
+
+std::vector<PersonForecast> PeopleTracker::tentativeForecasts() const {
+    std::vector<PersonForecast> out;
+    for (const Track& t : tracks_)
+        if (!confirmed(t))
+            out.push_back(t.filter.forecast(t.id));
+    return out;
+}
+
+std::vector<TrackInfo> PeopleTracker::tracks() const {
+    std::vector<TrackInfo> out;
+    out.reserve(tracks_.size());
+    for (const Track& t : tracks_)
+        out.push_back({t.filter.forecast(t.id), t.hits, confirmed(t), t.lastSeen});
+    return out;
+}
+
+std::size_t PeopleTracker::confirmedCount() const {
+    return std::size_t(std::count_if(tracks_.begin(), tracks_.end(),
+                                     [this](const Track& t) { return confirmed(t); }));
 }
 
 }  // namespace daep::perception

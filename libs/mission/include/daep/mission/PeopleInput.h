@@ -5,12 +5,19 @@
 #include <vector>
 
 #include "daep/common/Types.h"
+#include "daep/perception/PeopleDetector.h"
 #include "daep/perception/PeopleTracker.h"
 #include "daep/sim/DepthCamera.h"
 #include "daep/world/People.h"
 
 namespace mrpt::config {
 class CConfigFileBase;
+}
+namespace mrpt::obs {
+class CObservation3DRangeScan;
+}
+namespace daep::mapping {
+class ExplorationMap;
 }
 namespace daep::world {
 class RayCaster;
@@ -20,11 +27,15 @@ namespace daep::mission {
 
 /** Section [tracking]: where the planner's people come from and how they are tracked. */
 struct PeopleInputParams {
-    /** ground_truth: every person, exactly; sensed: only people the camera really sees. */
+    /**
+     * ground_truth: every person, exactly; sensed: only people the camera really sees;
+     * detected: people found in the depth frames by the detector.
+     */
     std::string source = "ground_truth";
     double sensedRange = 5.0;        ///< m from the camera
     double sensedNoiseSigma = 0.05;  ///< m, Gaussian on each sensed position
     perception::TrackerParams tracker;
+    perception::DetectorParams detector;
 
     static PeopleInputParams fromConfig(const mrpt::config::CConfigFileBase& config);
 };
@@ -43,6 +54,14 @@ public:
                  const world::RayCaster& scene, const FlatPose& sensor,
                  const sim::CameraParams& camera, const Eigen::Vector3d& bodySize);
 
+    bool detects() const { return params_.source == "detected"; }
+    /**
+     * With people_source = detected: finds people in the frame seen from `robot`; call it
+     * before the frame goes into the map (the detector looks for what the map contradicts).
+     */
+    void detect(double t, const mrpt::obs::CObservation3DRangeScan& frame, const FlatPose& robot,
+                const mapping::ExplorationMap& map);
+
     const std::vector<perception::PersonForecast>& forecasts() const { return forecasts_; }
     long measurements() const { return measurements_; }
 
@@ -58,6 +77,7 @@ public:
 private:
     PeopleInputParams params_;
     perception::PeopleTracker tracker_;
+    perception::PeopleDetector detector_;
     std::mt19937_64 rng_;
     std::vector<perception::PersonForecast> forecasts_;
     long measurements_ = 0;

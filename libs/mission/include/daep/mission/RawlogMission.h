@@ -21,7 +21,9 @@ class ExperimentConfig;
  * rawlog gives, and every [rawlog] plan_every_s of rawlog time asks the planner what it would
  * fly from there (nothing is flown). Writes plans.csv (pose, plan, gain, keepFlying verdict),
  * timeseries.csv, trajectory.csv, summary.json, timing.json, collisions.csv (empty), map.bt
- * and the scene, like Mission. People are not detected yet: the planner sees the map only.
+ * and the scene, like Mission. People are detected in every frame ([detector]) and tracked
+ * ([tracker]); people.csv has the confirmed tracks after each frame. The planner does not see
+ * them yet: it plans on the map only.
  */
 class RawlogMission {
 public:

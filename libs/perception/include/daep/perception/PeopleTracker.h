@@ -3,31 +3,48 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "daep/perception/PersonMeasurement.h"
 #include "daep/perception/PersonTrack.h"
 
 namespace daep::perception {
-
-/**
- * One measured person position. `id` >= 0 when the source knows who it is (the simulator's
- * ground truth, or its "sensed" camera model); -1 for an anonymous detection, which the
- * tracker associates with its tracks itself.
- */
-struct PersonMeasurement {
-    int id = -1;
-    Eigen::Vector2d position = Eigen::Vector2d::Zero();
-    Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity() * 1e-4;  ///< of the position, m^2
-};
 
 struct TrackerParams {
     PredictorParams predictor;
     /** A track not measured for this long (s) is dropped; until then it is predicted on. */
     double dropAfter = 5.0;
+    /**
+     * Gate for anonymous measurements: squared Mahalanobis distance of the innovation, chi-square
+     * with 2 degrees of freedom (9.21 = 99 %). A measurement outside every track's gate starts a
+     * new track instead of updating one.
+     */
+    double gateChi2 = 9.21;
+    /** Measurements a new anonymous track needs before it is confirmed (shown in forecasts()). */
+    int confirmHits = 3;
+    /** A tentative track not measured for this long (s) is dropped (clutter dies fast). */
+    double tentativeDropAfter = 1.0;
+};
+
+/** One track as the tracker sees it (for display and evaluation). */
+struct TrackInfo {
+    PersonForecast forecast;
+    int hits = 0;            ///< measurements so far
+    bool confirmed = false;  ///< known id, or anonymous with >= confirmHits hits
+    double lastSeen = 0.0;
 };
 
 /**
  * The people the drone knows of: one constant-velocity Kalman track per person, kept across
  * updates (never rebuilt), predicted on with growing uncertainty while unseen, dropped after
  * `dropAfter` seconds without a measurement.
+ *
+ * Measurements with a known id update the track of that id (created on first sight, confirmed
+ * at once). Anonymous measurements (id = -1, e.g. from PeopleDetector) are associated with the
+ * anonymous tracks: each pair inside the chi-square gate costs the negative log-likelihood of
+ * the innovation (d^2 + ln det S), and the Hungarian method picks the assignment of least total
+ * cost. A measurement left over starts a tentative track, unless it lies inside the gate of a
+ * confirmed track (a person seen twice, e.g. split by an occluder, must not become two). A
+ * tentative track is confirmed after confirmHits measurements and dropped after
+ * tentativeDropAfter seconds unseen.
  */
 class PeopleTracker {
 public:
@@ -36,10 +53,16 @@ public:
     /** Feeds the measurements of one instant (time non-decreasing across calls). */
     void update(double time, const std::vector<PersonMeasurement>& measurements);
 
-    /** A closed-form forecast of every live track. */
+    /** A closed-form forecast of every live confirmed track. */
     std::vector<PersonForecast> forecasts() const;
+    /** Forecasts of the anonymous tracks still waiting for confirmation. */
+    std::vector<PersonForecast> tentativeForecasts() const;
+    /** Every live track, confirmed or not. */
+    std::vector<TrackInfo> tracks() const;
 
+    /** Live tracks, confirmed and tentative. */
     std::size_t size() const { return tracks_.size(); }
+    std::size_t confirmedCount() const;
     const TrackerParams& params() const { return params_; }
 
 private:
@@ -47,10 +70,15 @@ private:
         int id = -1;
         PersonTrack filter;
         double lastSeen = 0.0;
+        int hits = 1;
+        bool anonymous = false;
     };
 
+    bool confirmed(const Track& t) const { return !t.anonymous || t.hits >= params_.confirmHits; }
     Track* findById(int id);
     void updateOrStart(double time, int id, const PersonMeasurement& m);
+    void associateAnonymous(double time, const std::vector<PersonMeasurement>& anonymous);
+    void startAnonymous(double time, const PersonMeasurement& m);
     void dropStale(double time);
 
     TrackerParams params_;

@@ -1,0 +1,283 @@
+#include "daep/mission/DetectionEval.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <ostream>
+
+#include "ComponentParams.h"
+#include "RawlogReader.h"
+#include "daep/common/Config.h"
+#include "daep/common/Error.h"
+#include "daep/mapping/ExplorationMap.h"
+#include "daep/mission/ExperimentConfig.h"
+#include "daep/perception/PeopleDetector.h"
+#include "daep/perception/PeopleTracker.h"
+
+namespace daep::mission {
+namespace {
+
+/** Sensor axes in the world and the pinhole intrinsics of one depth frame. */
+struct View {
+    Eigen::Vector3d origin, forward, left, up;
+    double fx = 1, fy = 1, cx = 0, cy = 0;
+    int cols = 0, rows = 0;
+
+    View(const mrpt::obs::CObservation3DRangeScan& obs, const FlatPose& robot) {
+        const mrpt::poses::CPose3D robotPose(robot.position.x(), robot.position.y(),
+                                             robot.position.z(), robot.yaw, 0.0, 0.0);
+        const mrpt::poses::CPose3D sensor = robotPose + obs.sensorPose;
+        const auto& r = sensor.getRotationMatrix();
+        forward = {r(0, 0), r(1, 0), r(2, 0)};
+        left = {r(0, 1), r(1, 1), r(2, 1)};
+        up = {r(0, 2), r(1, 2), r(2, 2)};
+        origin = {sensor.x(), sensor.y(), sensor.z()};
+        fx = obs.cameraParams.fx();
+        fy = obs.cameraParams.fy();
+        cx = obs.cameraParams.cx();
+        cy = obs.cameraParams.cy();
+        cols = int(obs.rangeImage.cols());
+        rows = int(obs.rangeImage.rows());
+    }
+
+    /** Ray through pixel (u, v) scaled so that its forward component is 1: t is depth. */
+    Eigen::Vector3d ray(double u, double v) const {
+        return forward + ((cy - v) / fy) * up + ((cx - u) / fx) * left;
+    }
+
+    double horizontalDistance(const Eigen::Vector2d& p) const {
+        return (p - origin.head<2>()).norm();
+    }
+};
+
+/** A person's body box: centre, half extents and heading. */
+struct Body {
+    Eigen::Vector3d centre, half;
+    double yaw = 0.0;
+
+    /** Depth of the first hit of ray o + t d (t > 0), or -1 for a miss. */
+    double hit(const Eigen::Vector3d& o, const Eigen::Vector3d& d) const {
+        const double c = std::cos(yaw), s = std::sin(yaw);
+        const auto local = [&](const Eigen::Vector3d& w) {
+            return Eigen::Vector3d(c * w.x() + s * w.y(), -s * w.x() + c * w.y(), w.z());
+        };
+        const Eigen::Vector3d lo = local(o - centre), ld = local(d);
+        double tMin = -1e18, tMax = 1e18;
+        for (int a = 0; a < 3; ++a) {
+            if (std::abs(ld[a]) < 1e-12) {
+                if (std::abs(lo[a]) > half[a])
+                    return -1.0;
+                continue;
+            }
+            const double t1 = (-half[a] - lo[a]) / ld[a], t2 = (half[a] - lo[a]) / ld[a];
+            tMin = std::max(tMin, std::min(t1, t2));
+            tMax = std::min(tMax, std::max(t1, t2));
+        }
+        return tMin > 0.0 && tMax >= tMin ? tMin : -1.0;
+    }
+
+    Eigen::Vector3d corner(int i) const {
+        const Eigen::Vector3d sign(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+        const Eigen::Vector3d l = sign.cwiseProduct(half);
+        const double c = std::cos(yaw), s = std::sin(yaw);
+        return centre + Eigen::Vector3d(c * l.x() - s * l.y(), s * l.x() + c * l.y(), l.z());
+    }
+};
+
+/** Depth (m along the optical axis) of pixel (u, v), 0 for no return. */
+double depthAt(const mrpt::obs::CObservation3DRangeScan& obs, const View& view, int u, int v) {
+    const double d = double(obs.rangeImage(v, u)) * obs.rangeUnits;
+    if (obs.range_is_depth || d <= 0)
+        return d;
+    return d / view.ray(u, v).norm();
+}
+
+/**
+ * Share of the body's projection (over an image extended past its borders) whose pixels return
+ * the body itself: 1 for a fully visible person, lower when occluded or cut by the image
+ * border, 0 when behind the camera.
+ */
+double visibleFraction(const mrpt::obs::CObservation3DRangeScan& obs, const View& view,
+                       const Body& body) {
+    double uMin = 1e9, uMax = -1e9, vMin = 1e9, vMax = -1e9;
+    for (int i = 0; i < 8; ++i) {
+        const Eigen::Vector3d rel = body.corner(i) - view.origin;
+        const double a = rel.dot(view.forward);
+        if (a < 0.05)
+            return 0.0;
+        const double u = view.cx - view.fx * rel.dot(view.left) / a;
+        const double v = view.cy - view.fy * rel.dot(view.up) / a;
+        uMin = std::min(uMin, u), uMax = std::max(uMax, u);
+        vMin = std::min(vMin, v), vMax = std::max(vMax, v);
+    }
+    const int step = std::max(1, view.cols / 160);
+    const auto clampTo = [](double x, int n) { return int(std::clamp(x, -double(n), 2.0 * n)); };
+    std::size_t total = 0, visible = 0;
+    constexpr double kTolerance = 0.1;  // m: noise and the depth quantisation
+    for (int v = clampTo(vMin, view.rows); v <= clampTo(vMax, view.rows); v += step) {
+        for (int u = clampTo(uMin, view.cols); u <= clampTo(uMax, view.cols); u += step) {
+            const double t = body.hit(view.origin, view.ray(u, v));
+            if (t < 0)
+                continue;
+            ++total;
+            if (u >= 0 && v >= 0 && u < view.cols && v < view.rows &&
+                std::abs(depthAt(obs, view, u, v) - t) < kTolerance)
+                ++visible;
+        }
+    }
+    return total ? double(visible) / double(total) : 0.0;
+}
+
+/** Greedy one-to-one matching by distance (people are >= 1 m apart, the gate is smaller). */
+std::vector<int> matchDetections(const std::vector<Eigen::Vector2d>& truth,
+                                 const std::vector<perception::PersonMeasurement>& detections,
+                                 double gate) {
+    struct Pair {
+        double distance;
+        int truth, detection;
+    };
+    std::vector<Pair> pairs;
+    for (std::size_t t = 0; t < truth.size(); ++t)
+        for (std::size_t d = 0; d < detections.size(); ++d) {
+            const double dist = (truth[t] - detections[d].position).norm();
+            if (dist <= gate)
+                pairs.push_back({dist, int(t), int(d)});
+        }
+    std::sort(pairs.begin(), pairs.end(),
+              [](const Pair& a, const Pair& b) { return a.distance < b.distance; });
+    std::vector<int> truthOfDetection(detections.size(), -1);
+    std::vector<bool> truthUsed(truth.size(), false);
+    for (const Pair& p : pairs) {
+        if (truthUsed[std::size_t(p.truth)] || truthOfDetection[std::size_t(p.detection)] >= 0)
+            continue;
+        truthUsed[std::size_t(p.truth)] = true;
+        truthOfDetection[std::size_t(p.detection)] = p.truth;
+    }
+    return truthOfDetection;
+}
+
+struct FrameScore {
+    std::size_t eligible = 0, found = 0, detections = 0, falsePositives = 0, tracks = 0;
+};
+
+class Evaluator {
+public:
+    Evaluator(const ExperimentConfig& config, const DetectionEvalOptions& options)
+        : options_(options),
+          bodySize_(loadPeopleParams(config.config()).bodySize),
+          detector_(loadDetectorParams(config.config())),
+          tracker_(loadTrackerParams(config.config())) {}
+
+    FrameScore scoreFrame(const RawlogFrame& frame, double t, mapping::ExplorationMap& map) {
+        const auto detections = detector_.detect(*frame.depth, frame.robot, map);
+        tracker_.update(t, detections);
+        map.insertObservation(*frame.depth, frame.robot);
+        const View view(*frame.depth, frame.robot);
+        std::vector<Eigen::Vector2d> truth;
+        std::vector<bool> eligible;
+        FrameScore f;
+        for (const auto& [index, pose] : frame.people) {
+            truth.push_back(pose.position.head<2>());
+            const bool inRange = view.horizontalDistance(truth.back()) <= options_.range;
+            const Body body{{pose.position.x(), pose.position.y(), 0.5 * bodySize_.z()},
+                            0.5 * bodySize_,
+                            pose.yaw};
+            eligible.push_back(inRange && visibleFraction(*frame.depth, view, body) >=
+                                              options_.minVisibleFraction);
+            score_.occludedOrTruncated += inRange && !eligible.back();
+        }
+        const std::vector<int> truthOf = matchDetections(truth, detections, options_.matchDistance);
+        for (std::size_t d = 0; d < detections.size(); ++d) {
+            const int who = truthOf[d];
+            if (who >= 0 && eligible[std::size_t(who)]) {
+                ++f.found;
+                score_.errors.push_back((detections[d].position - truth[std::size_t(who)]).norm());
+            }
+            if (view.horizontalDistance(detections[d].position) > options_.range)
+                continue;
+            ++f.detections;
+            f.falsePositives += who < 0;
+        }
+        f.eligible = std::size_t(std::count(eligible.begin(), eligible.end(), true));
+        scoreTracks(view, t, truth, f);
+        add(f);
+        return f;
+    }
+
+    const DetectionScore& score() const { return score_; }
+
+private:
+    void scoreTracks(const View& view, double t, const std::vector<Eigen::Vector2d>& truth,
+                     FrameScore& f) {
+        for (const perception::PersonForecast& track : tracker_.forecasts()) {
+            const Eigen::Vector2d p = track.at(t).mean;
+            if (view.horizontalDistance(p) > options_.range)
+                continue;
+            ++f.tracks;
+            ++score_.confirmedTracks;
+            for (const Eigen::Vector2d& q : truth)
+                if ((p - q).norm() <= options_.matchDistance) {
+                    ++score_.confirmedTrackMatches;
+                    break;
+                }
+        }
+    }
+
+    void add(const FrameScore& f) {
+        ++score_.frames;
+        score_.eligible += f.eligible;
+        score_.found += f.found;
+        score_.detections += f.detections;
+        score_.falsePositives += f.falsePositives;
+        score_.truePositives += f.detections - f.falsePositives;
+    }
+
+    DetectionEvalOptions options_;
+    Eigen::Vector3d bodySize_;
+    perception::PeopleDetector detector_;
+    perception::PeopleTracker tracker_;
+    DetectionScore score_;
+};
+
+/** The map only needs a box for its dense mirror: 40 x 40 x 5 m around the first pose. */
+Aabb mapBoxAround(const Eigen::Vector3d& p) {
+    Aabb box;
+    box.min = Eigen::Vector3d(p.x() - 20, p.y() - 20, -1);
+    box.max = Eigen::Vector3d(p.x() + 20, p.y() + 20, 4);
+    return box;
+}
+
+}  // namespace
+
+DetectionScore evaluateDetection(const ExperimentConfig& config, const std::string& rawlogPath,
+                                 const DetectionEvalOptions& options, std::ostream* frameCsv) {
+    const ConfigReader r(config.config(), "rawlog", config.source());
+    RawlogReader reader(rawlogPath,
+                        config.config().read_string("rawlog", "sensor_label", "", false),
+                        r.requireString("pose_label"));
+    RawlogFrame frame;
+    if (!reader.next(frame))
+        throw InputError(rawlogPath + ": no depth frames");
+    if (frame.people.empty())
+        throw InputError(rawlogPath +
+                         ": no PERSON_<i> poses (record a dynamic run with output.rawlog = true)");
+    Evaluator evaluator(config, options);
+    mapping::ExplorationMap map(loadMapParams(config.config()), mapBoxAround(frame.robot.position));
+    const double firstStamp = frame.stamp;
+    if (frameCsv)
+        *frameCsv << "t,eligible,found,detections,false_positives,confirmed_tracks\n";
+    do {
+        const double t = frame.stamp - firstStamp;
+        const FrameScore f = evaluator.scoreFrame(frame, t, map);
+        if (frameCsv)
+            *frameCsv << t << ',' << f.eligible << ',' << f.found << ',' << f.detections << ','
+                      << f.falsePositives << ',' << f.tracks << '\n';
+    } while (reader.next(frame));
+    return evaluator.score();
+}
+
+}  // namespace daep::mission
