@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "daep/common/AppMain.h"
 #include "daep/common/Error.h"
 #include "daep/eval/BenchmarkResults.h"
 #include "daep/eval/BenchmarkRunner.h"
@@ -156,18 +157,12 @@ int benchmark(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
+    return daep::runApp([&] {
         const Options o = parseArguments(argc, argv);
         if (o.help) {
             std::cout << kUsage;
             return 0;
         }
         return o.aggregate.empty() ? benchmark(o) : aggregate(o.aggregate, {});
-    } catch (const daep::InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 2;
-    }
+    });
 }

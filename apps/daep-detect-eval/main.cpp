@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "daep/common/AppMain.h"
 #include "daep/common/Error.h"
 #include "daep/eval/Statistics.h"
 #include "daep/mission/DetectionEval.h"
@@ -23,17 +24,6 @@ constexpr const char* kUsage =
     "--match m of a true body centre is a hit), and the position error of the hits.\n"
     "--csv writes one row per frame. The last line is\n"
     "recall=<r> precision=<p> error_mean=<m> error_p95=<m>.\n";
-
-double number(const std::string& flag, const char* text) {
-    try {
-        std::size_t used = 0;
-        const double v = std::stod(text, &used);
-        if (used == std::string(text).size())
-            return v;
-    } catch (const std::exception&) {
-    }
-    throw daep::InputError(flag + ": '" + text + "' is not a number");
-}
 
 void print(const daep::mission::DetectionScore& s) {
     using daep::eval::mean;
@@ -56,7 +46,7 @@ void print(const daep::mission::DetectionScore& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
+    return daep::runApp([&] {
         std::vector<std::string> positional, overrides;
         daep::mission::DetectionEvalOptions options;
         std::string csvPath;
@@ -70,11 +60,11 @@ int main(int argc, char** argv) {
             if (arg == "--set" && hasValue)
                 overrides.push_back(argv[++i]);
             else if (arg == "--range" && hasValue)
-                options.range = number(arg, argv[++i]);
+                options.range = daep::parseNumber(arg, argv[++i]);
             else if (arg == "--min-visible" && hasValue)
-                options.minVisibleFraction = number(arg, argv[++i]);
+                options.minVisibleFraction = daep::parseNumber(arg, argv[++i]);
             else if (arg == "--match" && hasValue)
-                options.matchDistance = number(arg, argv[++i]);
+                options.matchDistance = daep::parseNumber(arg, argv[++i]);
             else if (arg == "--csv" && hasValue)
                 csvPath = argv[++i];
             else if (!arg.empty() && arg[0] != '-')
@@ -95,11 +85,5 @@ int main(int argc, char** argv) {
                                                             csvPath.empty() ? nullptr : &csv);
         print(score);
         return 0;
-    } catch (const daep::InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 2;
-    }
+    });
 }

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <string>
 
+#include "daep/common/AppMain.h"
 #include "daep/common/Error.h"
 #include "daep/perception/PredictionEval.h"
 
@@ -15,21 +16,10 @@ constexpr const char* kUsage =
     "(frame id x y): ADE, FDE and the fraction of true positions inside the predicted\n"
     "95 % ellipse, over Social-GAN windows (a person counts when seen in all frames).\n";
 
-double number(const std::string& flag, const char* text) {
-    try {
-        std::size_t used = 0;
-        const double v = std::stod(text, &used);
-        if (used == std::string(text).size())
-            return v;
-    } catch (const std::exception&) {
-    }
-    throw daep::InputError(flag + ": '" + text + "' is not a number");
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
+    return daep::runApp([&] {
         std::string path;
         daep::perception::PredictorParams params;
         daep::perception::EvalProtocol protocol;
@@ -41,15 +31,15 @@ int main(int argc, char** argv) {
             }
             const bool hasValue = i + 1 < argc;
             if (arg == "--accel-noise" && hasValue)
-                params.accelNoise = number(arg, argv[++i]);
+                params.accelNoise = daep::parseNumber(arg, argv[++i]);
             else if (arg == "--measurement-sigma" && hasValue)
-                params.measurementSigma = number(arg, argv[++i]);
+                params.measurementSigma = daep::parseNumber(arg, argv[++i]);
             else if (arg == "--observed" && hasValue)
-                protocol.observed = static_cast<int>(number(arg, argv[++i]));
+                protocol.observed = static_cast<int>(daep::parseNumber(arg, argv[++i]));
             else if (arg == "--predicted" && hasValue)
-                protocol.predicted = static_cast<int>(number(arg, argv[++i]));
+                protocol.predicted = static_cast<int>(daep::parseNumber(arg, argv[++i]));
             else if (arg == "--step" && hasValue)
-                protocol.stepSec = number(arg, argv[++i]);
+                protocol.stepSec = daep::parseNumber(arg, argv[++i]);
             else if (!arg.empty() && arg[0] != '-' && path.empty())
                 path = arg;
             else
@@ -67,8 +57,5 @@ int main(int argc, char** argv) {
                   << std::fixed << std::setprecision(3) << "ADE=" << s.ade << " FDE=" << s.fde
                   << " coverage95=" << s.coverage << "\n";
         return s.windows > 0 ? 0 : 2;
-    } catch (const daep::InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    }
+    });
 }

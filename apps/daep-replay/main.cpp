@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "daep/common/AppMain.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/Replay.h"
@@ -35,17 +36,11 @@ int main(int argc, char** argv) {
         std::cerr << kUsage;
         return 1;
     }
-    try {
+    return daep::runApp([&] {
         const auto config = daep::mission::ExperimentConfig::fromFile(positional[0], overrides);
         const auto r = daep::mission::replayTrajectory(config, positional[1]);
         std::cout << std::fixed << std::setprecision(2) << "frames " << r.frames << "  known "
                   << r.knownVolume << " m^3  coverage " << r.coveragePercent << " %\n";
         return 0;
-    } catch (const daep::InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 2;
-    }
+    });
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "WorldRender.h"
+#include "daep/common/AppMain.h"
 #include "daep/common/Error.h"
 #include "daep/world/GazeboImport.h"
 #include "daep/world/WorldSpec.h"
@@ -122,14 +123,8 @@ int main(int argc, char** argv) {
                   << kUsage;
         return 1;
     }
-    try {
+    return daep::runApp([&] {
         const Args args = parseArgs(argc, argv);
         return command == "import" ? runImport(args) : runRender(args);
-    } catch (const daep::InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 2;
-    }
+    });
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../planning/PlanningTestUtil.h"
+#include "BenchScenes.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/planning/AepPlanner.h"
 #include "daep/sim/DepthCamera.h"
@@ -29,23 +30,7 @@ struct PartlyExploredCafe {
     PartlyExploredCafe() {
         world = daep::world::loadWorldFile(DAEP_SOURCE_DIR "/share/daep/worlds/cafe.yaml");
         const daep::world::RayCaster caster(world);
-        daep::sim::CameraParams cp;
-        cp.width = 320;
-        cp.height = 240;
-        const daep::sim::DepthCamera camera(cp);
-        map = std::make_unique<daep::mapping::ExplorationMap>(daep::mapping::MapParams{},
-                                                              world.explorationBox);
-        std::mt19937_64 rng(1);
-        mrpt::obs::CObservation3DRangeScan obs;
-        for (std::size_t s = 0; s < std::min<std::size_t>(3, world.starts.size()); ++s) {
-            daep::FlatPose pose{world.starts[s] + Eigen::Vector3d(0, 0, 1.0), 0.0};
-            for (int step = 0; step < 18; ++step) {
-                pose.yaw = daep::wrapAngle(step * M_PI / 9.0);
-                camera.render(caster, pose, 0.0, rng, obs);
-                map->insertObservation(obs, pose);
-            }
-            poses.push_back(pose);
-        }
+        map = daep::bench::lookAroundAtStarts(world, caster, 3, poses);
     }
 };
 
@@ -54,10 +39,7 @@ const PartlyExploredCafe& cafe() {
     return scene;
 }
 
-double quantile(std::vector<double> v, double q) {
-    std::sort(v.begin(), v.end());
-    return v[static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1)))];
-}
+using daep::bench::quantile;
 
 /**
  * One AEP local planning call (cache refresh, branch reuse, RRT* growth with cubature or GP

@@ -60,26 +60,27 @@ TEST(BenchmarkApp, SmokeBenchmarkRunsAggregatesAndResumes) {
                            0),
               0u);
     for (const char* run :
-         {"crosswalks,dynamic,aep,0,0,1,ok,0,", "crosswalks,dynamic,aep,1,0,1,ok,0,",
-          "crosswalks,dynamic,rhnbvp,0,0,1,ok,0,", "crosswalks,dynamic,rhnbvp,1,0,1,ok,0,"}) {
+         {"crosswalks,dynamic,aep,0,0,1,ok,0,", "crosswalks,dynamic,daep,0,0,1,ok,0,",
+          "crosswalks,dynamic,dep,0,0,1,ok,0,", "crosswalks,dynamic,rhnbvp,0,0,1,ok,0,"}) {
         bool found = false;
         for (const auto& line : csv)
             found = found || line.rfind(run, 0) == 0;
         EXPECT_TRUE(found) << run;
     }
-    const auto summary = readText(out / "runs/crosswalks_dynamic_aep_s1_r0/summary.json");
+    const auto summary = readText(out / "runs/crosswalks_dynamic_aep_s0_r0/summary.json");
     EXPECT_NEAR(jsonNumber(summary, "exploration_time_s"), 30.0, 1e-6);  // [set] reached the run
     EXPECT_EQ(summary.find("\"planner\": \"aep\"") != std::string::npos, true) << summary;
 
     const std::string table = readText(out / "table.md");
-    EXPECT_NE(table.find("| RH-NBVP | AEP |"), std::string::npos) << table;
+    EXPECT_NE(table.find("| RH-NBVP | AEP | DEP | DAEP |"), std::string::npos) << table;
     for (const char* row :
          {"| **C %** |", "| **T s** |", "| **PL m** |", "| **PT s** |", "| **NOC** |"})
         EXPECT_NE(table.find(row), std::string::npos) << row;
 
     EXPECT_EQ(pngSize(out / "plots/coverage_crosswalks_dynamic.png"), std::make_pair(900, 520));
     for (const char* png :
-         {"collisions_aep_crosswalks_dynamic.png", "collisions_rhnbvp_crosswalks_dynamic.png"})
+         {"collisions_aep_crosswalks_dynamic.png", "collisions_rhnbvp_crosswalks_dynamic.png",
+          "collisions_daep_crosswalks_dynamic.png"})
         EXPECT_EQ(pngSize(out / "plots" / png), std::make_pair(900, 360)) << png;
 
     // Second invocation: everything is done, nothing runs again.
@@ -91,11 +92,11 @@ TEST(BenchmarkApp, SmokeBenchmarkRunsAggregatesAndResumes) {
     EXPECT_EQ(summaryTime(out, "crosswalks_dynamic_rhnbvp_s0_r0"), before);
 
     // A crashed run (recorded exit code) is kept as failed, and re-run with --retry-failed.
-    const auto crashed = out / "runs/crosswalks_dynamic_aep_s0_r0";
+    const auto crashed = out / "runs/crosswalks_dynamic_daep_s0_r0";
     std::ofstream(crashed / "exit_code") << "139\n";
     r = runApp(DAEP_BENCHMARK_BIN, "--aggregate " + out.string(), scratch);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(readText(out / "results.csv").find("crosswalks,dynamic,aep,0,0,1,failed,139,"),
+    EXPECT_NE(readText(out / "results.csv").find("crosswalks,dynamic,daep,0,0,1,failed,139,"),
               std::string::npos);
     r = runApp(DAEP_BENCHMARK_BIN, smokeConfig() + " --retry-failed --jobs 2 --out " + out.string(),
                scratch);
@@ -129,7 +130,7 @@ TEST(BenchmarkApp, SmokeBenchmarkRunsAggregatesAndResumes) {
     r = runApp(DAEP_BENCHMARK_BIN, "--aggregate " + fresh.string(), scratch);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string freshCsv = readText(fresh / "results.csv");
-    EXPECT_NE(freshCsv.find("crosswalks,dynamic,aep,1,0,1,ok,0,"), std::string::npos) << freshCsv;
+    EXPECT_NE(freshCsv.find("crosswalks,dynamic,daep,0,0,1,ok,0,"), std::string::npos) << freshCsv;
     EXPECT_NE(freshCsv.find("crosswalks,dynamic,aep,0,0,1,pending,"), std::string::npos)
         << freshCsv;
     fs::remove_all(scratch);

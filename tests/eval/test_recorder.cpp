@@ -75,7 +75,7 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
           "\"planning_time_s\""})
         EXPECT_NE(summary.find(key), std::string::npos) << key;
     EXPECT_EQ(readText(dir / "nested" / "collisions.csv"),
-              "person,start_s,end_s\n2,10.000,11.500\n");
+              "person,start_s,end_s,tracked\n2,10.000,11.500,-1\n");
     EXPECT_NE(readText(dir / "nested" / "timing.json").find("\"speedup_vs_real_time\": 50.00"),
               std::string::npos);
     fs::remove_all(dir);

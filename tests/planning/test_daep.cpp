@@ -132,39 +132,49 @@ TEST_F(DaepRoom, EscapesAPersonWalkingAtTheHoveringDrone) {
     EXPECT_TRUE(map->isSegmentFree(first.to, first.to, planner.params().robotRadius));
 }
 
-TEST_F(DaepRoom, TheEscapeMovesAtOnceToTheMostClearanceInKnownFreeSpace) {
+TEST_F(DaepRoom, TheEscapeMovesAtOnceToSafetyPreferringWhatTheCameraSees) {
     DaepPlanner planner = makePlanner(3);
-    PlanningContext ctx = contextFor(*map, root, 0.7);
-    // Two people closing in from the east and the north-east.
-    const std::vector<PersonForecast> people{walker(0, {3.4, 2.0}, {-0.35, 0}, ctx.time),
-                                             walker(1, {3.0, 3.3}, {-0.25, -0.25}, ctx.time)};
+    // Facing south-west while a person walks at the drone from the east.
+    const double yaw = -2.4;
+    PlanningContext ctx = contextFor(*map, root, yaw);
+    std::vector<PersonForecast> people{walker(0, {3.5, 2.0}, {-0.35, 0}, ctx.time)};
+    people[0].accelNoise = 1e-4;  // a steady walker: the prediction stays tight
     ctx.people = &people;
     const Plan plan = planner.escape(ctx);
     ASSERT_EQ(plan.waypoints.size(), 1u) << plan.reason;
     const FlatPose goal = plan.waypoints[0].pose;
-    EXPECT_DOUBLE_EQ(goal.yaw, 0.7);  // no turn first
-    EXPECT_TRUE(map->isSegmentFree(root, goal.position, planner.params().robotRadius));
-    // Away from both: west or south-west.
-    EXPECT_LT(goal.position.x(), root.x());
+    EXPECT_DOUBLE_EQ(goal.yaw, yaw);  // no turn first
+    const double r = planner.params().robotRadius;
+    EXPECT_TRUE(map->isSegmentFree(root, goal.position, r));
     const double horizon = planner.daepParams().evasionHorizon;
     auto clearanceVia = [&](const Eigen::Vector3d& to) {
-        const TimedSegment move = timedSegment(ctx.pose, {to, 0.7}, ctx.time, 0.5, 1.0);
+        const TimedSegment move = timedSegment(ctx.pose, {to, yaw}, ctx.time, 0.5, 1.0);
         TimedSegment hover;
         hover.from = hover.to = to;
         hover.start = move.end();
         hover.turnTime = std::max(0.0, ctx.time + horizon - move.end());
         return std::min(planner.obstacles().clearance(move), planner.obstacles().clearance(hover));
     };
-    EXPECT_GT(clearanceVia(goal.position), clearanceVia(root) + 0.5);
-    // No other candidate direction at the same distance does better.
-    const double d = (goal.position - root).norm();
-    for (int k = 0; k < 16; ++k) {
-        const double a = 2 * M_PI * k / 16;
-        const Eigen::Vector3d other = root + d * Eigen::Vector3d(std::cos(a), std::sin(a), 0);
-        if (map->isSegmentFree(root, other, planner.params().robotRadius)) {
-            EXPECT_LE(clearanceVia(other), clearanceVia(goal.position) + 1e-9) << k;
+    // Staying is unsafe; the escape is safe, and in view.
+    EXPECT_LT(clearanceVia(root), 0.0);
+    EXPECT_GT(clearanceVia(goal.position), 0.0) << plan.reason;
+    EXPECT_EQ(plan.reason.find("blind"), std::string::npos) << plan.reason;
+    // No shorter safe escape along the camera's view (or, if the escape is blind, none at all).
+    const Eigen::Vector2d chosen = (goal.position - root).head<2>();
+    const bool chosenSeen =
+        std::abs(wrapAngle(std::atan2(chosen.y(), chosen.x()) - yaw)) <= 0.5 * GainParams{}.hfov;
+    for (const double d : {0.4, 0.8, 1.2, 1.6})
+        for (int k = 0; k < 16; ++k) {
+            const double a = 2 * M_PI * k / 16;
+            const Eigen::Vector3d other = root + d * Eigen::Vector3d(std::cos(a), std::sin(a), 0);
+            const bool seen = std::abs(wrapAngle(a - yaw)) <= 0.5 * GainParams{}.hfov;
+            if (!map->isSegmentFree(root, other, r) || clearanceVia(other) <= 0.0)
+                continue;
+            EXPECT_FALSE(seen && !chosenSeen) << "a seen escape was safe: " << k << " " << d;
+            if (seen == chosenSeen) {
+                EXPECT_GE(d, chosen.norm() - 1e-9) << k;
+            }
         }
-    }
 }
 
 TEST_F(DaepRoom, KeepFlyingStopsWhenAPersonIsPredictedOnTheRestOfThePath) {
@@ -209,6 +219,43 @@ TEST(DaepPlanner, IsCreatedByNameAndWantsPeople) {
     EXPECT_EQ(planner->name(), "daep");
     EXPECT_TRUE(planner->usesPeople());
     EXPECT_FALSE(createPlanner("aep", *cfg, 1)->usesPeople());
+}
+
+}  // namespace
+}  // namespace daep::planning
+
+namespace daep::planning {
+namespace {
+
+TEST_F(DaepRoom, FacingTravelFliesEveryLegLookingAheadThenTurnsToTheView) {
+    DaepPlanner planner = makePlanner(4, "face_travel_direction", "true");
+    PlanningContext ctx = contextFor(*map, root, 2.5);
+    const std::vector<PersonForecast> people{walker(0, {0.6, 0.6}, {0.1, 0.0}, ctx.time)};
+    ctx.people = &people;
+    const Plan plan = planner.plan(ctx);
+    ASSERT_GE(plan.waypoints.size(), 1u) << plan.reason;
+    FlatPose at = ctx.pose;
+    for (const Waypoint& w : plan.waypoints) {
+        const Eigen::Vector2d leg = (w.pose.position - at.position).head<2>();
+        if (leg.norm() > 0.05) {  // a flight leg: flown facing along it
+            EXPECT_NEAR(std::abs(wrapAngle(w.pose.yaw - std::atan2(leg.y(), leg.x()))), 0.0, 1e-9);
+        }
+        at = w.pose;
+    }
+    // The tree's arrival times include both turns.
+    const Tree& tree = planner.tree();
+    for (int i = 1; i < tree.size(); ++i) {
+        const TreeNode& n = tree.node(i);
+        const TreeNode& p = tree.node(n.parent);
+        const Eigen::Vector2d leg = (n.position - p.position).head<2>();
+        if (leg.norm() < 0.05)
+            continue;
+        const double heading = std::atan2(leg.y(), leg.x());
+        const double expected = std::abs(wrapAngle(heading - p.yaw)) +
+                                (n.position - p.position).norm() / 0.5 +
+                                std::abs(wrapAngle(n.yaw - heading));
+        EXPECT_NEAR(n.time - p.time, expected, 1e-9) << i;
+    }
 }
 
 }  // namespace

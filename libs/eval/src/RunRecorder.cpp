@@ -117,8 +117,8 @@ void RunRecorder::addReplayPlan(const ReplayPlanRecord& r) {
     std::fprintf(plans_, ",%.3f\n", 1e3 * r.wallSec);
 }
 
-void RunRecorder::addCollision(int personIndex, double start, double end) {
-    collisions_.push_back({personIndex, start, end});
+void RunRecorder::addCollision(int personIndex, double start, double end, int tracked) {
+    collisions_.push_back({personIndex, start, end, tracked});
 }
 
 void RunRecorder::flush() {
@@ -178,9 +178,9 @@ void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec) const {
 }
 
 void RunRecorder::writeCollisions() const {
-    std::FILE* f = openForWriting(path("collisions.csv"), "person,start_s,end_s\n");
+    std::FILE* f = openForWriting(path("collisions.csv"), "person,start_s,end_s,tracked\n");
     for (const auto& c : collisions_)
-        std::fprintf(f, "%d,%.3f,%.3f\n", c.person, c.start, c.end);
+        std::fprintf(f, "%d,%.3f,%.3f,%d\n", c.person, c.start, c.end, c.tracked);
     std::fclose(f);
 }
 

@@ -9,16 +9,9 @@
 #include <vector>
 
 #include "daep/common/Types.h"
+#include "daep/mapping/DepthUnprojection.h"
 
 namespace daep::mapping {
-
-/** Sensor axes and position in the world, in float for the per-pixel loop. */
-struct SensorFrame {
-    Eigen::Vector3f forward, left, up, origin;
-};
-
-SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
-                               const FlatPose& robot);
 
 /**
  * Calls onPoint(row, col, worldPoint) for each pixel with a return, row-major. Uses MRPT's

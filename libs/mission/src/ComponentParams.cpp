@@ -1,32 +1,9 @@
 #include "ComponentParams.h"
 
+#include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 
 namespace daep::mission {
-namespace {
-
-double requirePositive(const ConfigReader& r, const std::string& key) {
-    const double v = r.requireDouble(key);
-    if (!(v > 0))
-        throw InputError("[" + r.section() + "] " + key + ": must be > 0");
-    return v;
-}
-
-double requireNonNegative(const ConfigReader& r, const std::string& key) {
-    const double v = r.requireDouble(key);
-    if (!(v >= 0))
-        throw InputError("[" + r.section() + "] " + key + ": must be >= 0");
-    return v;
-}
-
-int requirePositiveInt(const ConfigReader& r, const std::string& key) {
-    const int v = r.requireInt(key);
-    if (v < 1)
-        throw InputError("[" + r.section() + "] " + key + ": must be >= 1");
-    return v;
-}
-
-}  // namespace
 
 sim::CameraParams loadCameraParams(const mrpt::config::CConfigFileBase& cfg) {
     const ConfigReader r(cfg, "camera");
@@ -102,7 +79,7 @@ perception::DetectorParams loadDetectorParams(const mrpt::config::CConfigFileBas
     p.maxGrazingAngle = r.requireAngleDeg("max_grazing_deg");
     if (!(p.maxGrazingAngle > 0 && p.maxGrazingAngle < M_PI / 2))
         throw InputError("[detector] max_grazing_deg: must be in (0, 90)");
-    p.morphKernel = requirePositiveInt(r, "morph_kernel_px");
+    p.morphKernel = requireIntAtLeast(r, "morph_kernel_px", 1);
     p.surfaceMargin = requireNonNegative(r, "surface_margin");
     p.centreOffset = requireNonNegative(r, "centre_offset");
     p.mergeDistance = requireNonNegative(r, "merge_distance");
@@ -113,7 +90,7 @@ perception::DetectorParams loadDetectorParams(const mrpt::config::CConfigFileBas
     p.seeThroughDepth = requireNonNegative(r, "see_through_depth");
     p.bodyHalfWidth = requirePositive(r, "body_half_width");
     p.bodyHeight = requirePositive(r, "body_height");
-    p.pixelStride = requirePositiveInt(r, "pixel_stride");
+    p.pixelStride = requireIntAtLeast(r, "pixel_stride", 1);
     return p;
 }
 
@@ -125,7 +102,7 @@ perception::TrackerParams loadTrackerParams(const mrpt::config::CConfigFileBase&
     p.predictor.initialSpeedSigma = requirePositive(r, "initial_speed_sigma");
     p.dropAfter = requirePositive(r, "drop_after_s");
     p.gateChi2 = requirePositive(r, "gate_chi2");
-    p.confirmHits = requirePositiveInt(r, "confirm_hits");
+    p.confirmHits = requireIntAtLeast(r, "confirm_hits", 1);
     p.tentativeDropAfter = requirePositive(r, "tentative_drop_after_s");
     return p;
 }

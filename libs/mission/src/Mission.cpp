@@ -198,7 +198,10 @@ struct Mission::Impl {
             }
             people.advance(h);
             t += h;
+            const std::size_t episodes = monitor.events().size();
             monitor.update(t, drone.pose(), people.states());
+            for (std::size_t e = episodes; e < monitor.events().size(); ++e)
+                collisionTracked.push_back(trackedAtCollision(monitor.events()[e].personIndex));
             if (t >= nextFrame - kEps) {
                 captureFrame();
                 nextFrame += framePeriod;
@@ -237,6 +240,17 @@ struct Mission::Impl {
         }
     }
 
+    /** Whether a track lay on the person (within a body's width) as the collision began. */
+    int trackedAtCollision(int person) const {
+        if (person < 0 || !planner->usesPeople())
+            return -1;
+        const Eigen::Vector2d at = people.states()[static_cast<std::size_t>(person)].position;
+        for (const perception::PersonForecast& f : peopleInput.forecasts())
+            if ((f.at(t).mean - at).norm() < people.params().bodySize.x())
+                return 1;
+        return 0;
+    }
+
     planning::PlanningContext context() const {
         planning::PlanningContext ctx;
         ctx.time = t;
@@ -247,8 +261,10 @@ struct Mission::Impl {
         ctx.motion.yawRate = drone.params().yawRate;
         ctx.droneSize = drone.params().boxSize;
         ctx.personSize = people.params().bodySize;
-        if (planner->usesPeople())
+        if (planner->usesPeople()) {
             ctx.people = &peopleInput.forecasts();
+            ctx.peopleFromCamera = peopleInput.fromCamera();
+        }
         return ctx;
     }
 
@@ -302,8 +318,10 @@ struct Mission::Impl {
     }
 
     eval::RunSummary summarize(double wallTime) {
-        for (const auto& e : monitor.events())
-            recorder.addCollision(e.personIndex, e.start, e.end);
+        for (std::size_t i = 0; i < monitor.events().size(); ++i) {
+            const sim::CollisionEvent& e = monitor.events()[i];
+            recorder.addCollision(e.personIndex, e.start, e.end, collisionTracked[i]);
+        }
         std::vector<double> ms;
         for (double s : recorder.chargedPlanTimes())
             ms.push_back(1e3 * s);
@@ -352,6 +370,7 @@ struct Mission::Impl {
     SceneExporter scene;
     std::unique_ptr<RawlogRecorder> rawlog;
     std::vector<Eigen::Vector3d> trajectory;  ///< flown path, for the scene
+    std::vector<int> collisionTracked;        ///< per monitor event, see trackedAtCollision
     std::vector<planning::TreeEdge> lastTree;
     double nextScene = 0.0;
     const std::atomic<bool>* stopFlag = nullptr;

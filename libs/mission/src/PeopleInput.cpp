@@ -4,18 +4,12 @@
 
 #include "ComponentParams.h"
 #include "daep/common/Config.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 #include "daep/world/RayCaster.h"
 
 namespace daep::mission {
 namespace {
-
-double requirePositive(const ConfigReader& r, const std::string& key) {
-    const double v = r.requireDouble(key);
-    if (!(v > 0))
-        throw InputError("[" + r.section() + "] " + key + ": must be > 0");
-    return v;
-}
 
 /** Points of a body a camera may see: three heights, across the body as seen from the camera. */
 std::vector<Eigen::Vector3d> bodySamples(const world::PersonState& person,

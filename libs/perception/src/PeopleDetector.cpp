@@ -10,30 +10,15 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "daep/mapping/DepthUnprojection.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::perception {
 namespace {
 
 using mapping::CellState;
-
-/** Sensor axes and position in the world (X forward, Y left, Z up), float for pixel loops. */
-struct SensorFrame {
-    Eigen::Vector3f forward, left, up, origin;
-};
-
-SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
-                               const FlatPose& robot) {
-    const mrpt::poses::CPose3D robotPose(robot.position.x(), robot.position.y(), robot.position.z(),
-                                         robot.yaw, 0.0, 0.0);
-    const mrpt::poses::CPose3D sensor = robotPose + obs.sensorPose;
-    const auto& r = sensor.getRotationMatrix();
-    const auto column = [&r](int c) {
-        return Eigen::Vector3f(float(r(0, c)), float(r(1, c)), float(r(2, c)));
-    };
-    return {column(0), column(1), column(2),
-            Eigen::Vector3f(float(sensor.x()), float(sensor.y()), float(sensor.z()))};
-}
+using mapping::SensorFrame;
+using mapping::sensorFrameInWorld;
 
 void validate(const DetectorParams& p) {
     if (!(p.maxRange > 0) || !(p.ceilingHeight > p.floorHeight) || p.morphKernel < 1 ||

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "ConfigChecks.h"
 #include "daep/common/Config.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::planning {
@@ -132,9 +132,10 @@ void AepPlanner::setParent(int node, int parent) {
     tree_.node(node).parent = parent;
 }
 
-YawGain AepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& p, double arrival,
-                           bool rayCast) {
+YawGain AepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& from,
+                           const Eigen::Vector3d& p, double arrival, bool rayCast) {
     (void)arrival;
+    (void)from;
     if (!rayCast)
         return evaluateGain(*context.map, p);
     ++stats_.rayCasts;
@@ -146,6 +147,10 @@ bool AepPlanner::moveSafe(const FlatPose& from, double start, const FlatPose& to
     (void)start;
     (void)to;
     return true;
+}
+
+double AepPlanner::moveTime(const FlatPose& a, const FlatPose& b) const {
+    return motion_.travelTime(a, b);
 }
 
 bool AepPlanner::moveSafeFrom(int parent, const FlatPose& to) const {
@@ -164,7 +169,7 @@ void AepPlanner::propagate(int node) {
     const TreeNode& parent = tree_.node(n.parent);
     const double edge = (n.position - parent.position).norm();
     n.cost = parent.cost + edge;
-    n.time = parent.time + motion_.travelTime({parent.position, parent.yaw}, {n.position, n.yaw});
+    n.time = parent.time + moveTime({parent.position, parent.yaw}, {n.position, n.yaw});
     n.score = branchValue(parent.score, n.gain, edge, n.position);
     for (int child : children_[static_cast<std::size_t>(node)])
         propagate(child);
@@ -201,7 +206,7 @@ int AepPlanner::extend(const PlanningContext& context, const Eigen::Vector3d& sa
     const TreeNode& cheapest = tree_.node(candidates[first].second);
     const YawGain view =
         globalTree_ ? YawGain{headingOf(cheapest.position, p, cheapest.yaw), 0.0}
-                    : viewAt(context, p,
+                    : viewAt(context, cheapest.position, p,
                              cheapest.time + (p - cheapest.position).norm() / motion_.speed, false);
     int parent = -1;
     for (std::size_t k = first; k < candidates.size() && parent < 0; ++k) {
@@ -241,7 +246,7 @@ void AepPlanner::reinsertPreviousBranch(const PlanningContext& context) {
             break;
         const TreeNode& from = tree_.node(parent);
         const double arrival = from.time + (pose.position - from.position).norm() / motion_.speed;
-        const YawGain view = viewAt(context, pose.position, arrival, true);
+        const YawGain view = viewAt(context, from.position, pose.position, arrival, true);
         if (!moveSafeFrom(parent, {pose.position, view.yaw}))
             break;
         parent = addNode(parent, pose.position, view);

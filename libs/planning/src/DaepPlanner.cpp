@@ -5,8 +5,8 @@
 #include <sstream>
 #include <utility>
 
-#include "ConfigChecks.h"
 #include "daep/common/Config.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::planning {
@@ -39,6 +39,10 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.useGp = r.requireBool("use_gp");
     p.evasionHorizon = requirePositive(r, "evasion_horizon_s");
     p.waitTime = requirePositive(r, "wait_s");
+    p.faceTravel = r.requireString("face_travel_direction");
+    if (p.faceTravel != "auto" && p.faceTravel != "true" && p.faceTravel != "false")
+        throw InputError("config: [daep] face_travel_direction: '" + p.faceTravel +
+                         "' must be auto, true or false");
     return p;
 }
 
@@ -59,6 +63,8 @@ DaepPlanner::DaepPlanner(const DaepParams& params, const GainParams& gain, std::
 }
 
 void DaepPlanner::observePeople(const PlanningContext& context) {
+    facingTravel_ =
+        params_.faceTravel == "true" || (params_.faceTravel == "auto" && context.peopleFromCamera);
     SafetyParams safety = params_.safety;
     safety.droneSize = context.droneSize;
     safety.personSize = context.personSize;
@@ -74,23 +80,81 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
             dfm_.add(f.at(context.time).mean);
 }
 
-YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& p,
-                            double arrival, bool rayCast) {
+YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& from,
+                            const Eigen::Vector3d& p, double arrival, bool rayCast) {
     std::vector<BodyOccluder> inRange;
     const double range = gainEvaluator().params().range;
     for (const BodyOccluder& b : obstacles_.bodiesAt(arrival))
         if ((b.center - p.head<2>()).norm() <= range + b.radius)
             inRange.push_back(b);
+    const Eigen::Vector2d leg = (p - from).head<2>();
+    if (facingTravel_ && leg.norm() > 0.05) {
+        // Flying facing along the leg, the view at p is the one along it: no turn at the end.
+        const GainEvaluator& g = gainEvaluator();
+        const std::vector<double> columns =
+            g.columns(*context.map, p, inRange.empty() ? nullptr : &inRange);
+        ++mutableStats().rayCasts;
+        const YawGain best = g.bestYaw(columns);
+        if (inRange.empty() && best.gain > params().cacheThreshold)
+            cache().insert(p, best.yaw, best.gain);
+        const double heading = std::atan2(leg.y(), leg.x());
+        return {heading, g.windowGain(columns, heading)};
+    }
     if (inRange.empty())
-        return AepPlanner::viewAt(context, p, arrival, rayCast);
+        return AepPlanner::viewAt(context, from, p, arrival, rayCast);
     ++mutableStats().rayCasts;
     return gainEvaluator().bestYaw(*context.map, p, &inRange);
+}
+
+std::vector<FlatPose> DaepPlanner::movePoses(const FlatPose& a, const FlatPose& b) const {
+    const Eigen::Vector2d d = (b.position - a.position).head<2>();
+    if (!facingTravel_ || d.norm() < 0.05)
+        return {b};
+    const FlatPose along{b.position, std::atan2(d.y(), d.x())};
+    if (std::abs(wrapAngle(along.yaw - b.yaw)) < 1e-6)
+        return {b};
+    return {along, b};
+}
+
+double DaepPlanner::moveTime(const FlatPose& a, const FlatPose& b) const {
+    double time = 0.0;
+    FlatPose at = a;
+    for (const FlatPose& next : movePoses(a, b)) {
+        time += motion().travelTime(at, next);
+        at = next;
+    }
+    return time;
 }
 
 bool DaepPlanner::moveSafe(const FlatPose& from, double start, const FlatPose& to) const {
     if (obstacles_.empty())
         return true;
-    return obstacles_.isSafe(timedSegment(from, to, start, motion().speed, motion().yawRate));
+    FlatPose at = from;
+    for (const FlatPose& next : movePoses(from, to)) {
+        const TimedSegment move = timedSegment(at, next, start, motion().speed, motion().yawRate);
+        if (!obstacles_.isSafe(move))
+            return false;
+        start = move.end();
+        at = next;
+    }
+    return true;
+}
+
+Plan DaepPlanner::facingTravel(const PlanningContext& context, Plan plan) const {
+    if (!facingTravel_)
+        return plan;
+    std::vector<Waypoint> expanded;
+    FlatPose at = context.pose;
+    double time = context.time;
+    for (const Waypoint& w : plan.waypoints) {
+        for (const FlatPose& pose : movePoses(at, w.pose)) {
+            time += context.motion.travelTime(at, pose);
+            expanded.push_back({pose, time});
+            at = pose;
+        }
+    }
+    plan.waypoints = std::move(expanded);
+    return plan;
 }
 
 double DaepPlanner::branchValue(double parentValue, double gain, double edge,
@@ -128,9 +192,18 @@ Plan DaepPlanner::cutAtFirstUnsafe(const PlanningContext& context, Plan plan) co
     return plan;
 }
 
-Plan DaepPlanner::wait(const std::string& why) const {
+Plan DaepPlanner::wait(const PlanningContext& context, const std::string& why) const {
     Plan plan;
     plan.status = Plan::Status::Path;
+    // Waiting, the drone turns on the spot a quarter at a time: the camera sweeps around, so
+    // people coming from where it was not looking are seen (and the turn is checked as a move).
+    const FlatPose look{context.pose.position, wrapAngle(context.pose.yaw + M_PI / 2)};
+    if (moveSafe(context.pose, context.time, look)) {
+        plan.waypoints.push_back(
+            {look, context.time + context.motion.travelTime(context.pose, look)});
+        plan.reason = "wait, looking around: " + why;
+        return plan;
+    }
     plan.waitSeconds = params_.waitTime;
     plan.reason = "wait: " + why;
     return plan;
@@ -141,46 +214,81 @@ Plan DaepPlanner::escape(const PlanningContext& context) {
     return bestEscape(context);
 }
 
+namespace {
+
+/** One candidate escape: where to, how much clearance it keeps, and whether it is in view. */
+struct Escape {
+    FlatPose goal;
+    double gap = -std::numeric_limits<double>::infinity();
+    double distance = 0.0;
+    bool seen = false;
+
+    /**
+     * Any safe escape beats an unsafe one. Among safe ones, one the camera looks along beats a
+     * blind one (people not tracked may stand there), then the shorter, then the clearer;
+     * among unsafe ones, the clearer.
+     */
+    bool betterThan(const Escape& o) const {
+        const bool safe = gap > 0.0, otherSafe = o.gap > 0.0;
+        if (safe != otherSafe)
+            return safe;
+        if (!safe)
+            return gap > o.gap + 1e-9;
+        if (seen != o.seen)
+            return seen;
+        if (std::abs(distance - o.distance) > 1e-9)
+            return distance < o.distance;
+        return gap > o.gap + 1e-9;
+    }
+};
+
+}  // namespace
+
 Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
     const mapping::ExplorationMap& map = *context.map;
     const double r = params().robotRadius;
     const Aabb box = shrink(context.explorationBox, r);
     const Eigen::Vector3d& from = context.pose.position;
     const bool leavingBlocked = !map.isSegmentFree(from, from, r);
-    double bestGap = -std::numeric_limits<double>::infinity();
-    FlatPose best = context.pose;
+    const double halfFov = 0.5 * gainEvaluator().params().hfov;
+    bool any = false;
+    Escape best;
     for (const double distance : {0.4, 0.8, 1.2, 1.6}) {
         for (int k = 0; k < 16; ++k) {
             for (const double dz : {0.0, 0.4, -0.4}) {
                 const double a = 2.0 * M_PI * k / 16.0;
+                Escape e;
+                e.distance = distance;
+                e.seen = std::abs(wrapAngle(a - context.pose.yaw)) <= halfFov;
                 const Eigen::Vector3d to =
                     from + Eigen::Vector3d(distance * std::cos(a), distance * std::sin(a), dz);
                 if (!box.contains(to) || !segmentFlyable(map, from, to, r, leavingBlocked))
                     continue;
                 // Keep the heading: no turn, the drone moves at once.
-                const FlatPose goal{to, context.pose.yaw};
-                const TimedSegment move = timedSegment(
-                    context.pose, goal, context.time, context.motion.speed, context.motion.yawRate);
+                e.goal = {to, context.pose.yaw};
+                const TimedSegment move =
+                    timedSegment(context.pose, e.goal, context.time, context.motion.speed,
+                                 context.motion.yawRate);
                 TimedSegment hover;
                 hover.from = hover.to = to;
                 hover.start = move.end();
                 hover.turnTime = std::max(0.0, context.time + params_.evasionHorizon - move.end());
-                const double gap =
-                    std::min(obstacles_.clearance(move), obstacles_.clearance(hover));
-                if (gap > bestGap + 1e-9) {
-                    bestGap = gap;
-                    best = goal;
-                }
+                e.gap = std::min(obstacles_.clearance(move), obstacles_.clearance(hover));
+                if (!any || e.betterThan(best))
+                    best = e;
+                any = true;
             }
         }
     }
-    if (bestGap == -std::numeric_limits<double>::infinity())
-        return wait("a person is coming and no escape is free of static obstacles");
+    if (!any)
+        return wait(context, "a person is coming and no escape is free of static obstacles");
     Plan plan;
     plan.status = Plan::Status::Path;
-    plan.waypoints.push_back({best, context.time + context.motion.travelTime(context.pose, best)});
+    plan.waypoints.push_back(
+        {best.goal, context.time + context.motion.travelTime(context.pose, best.goal)});
     std::ostringstream why;
-    why << "evasion: escape with clearance " << bestGap << " m";
+    why << "evasion: " << (best.seen ? "" : "blind ") << "escape of " << best.distance
+        << " m with clearance " << best.gap << " m";
     plan.reason = why.str();
     return plan;
 }
@@ -192,12 +300,12 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
     Plan plan = AepPlanner::plan(context);
     if (plan.status == Plan::Status::Finished)
         return plan;
-    plan = cutAtFirstUnsafe(context, std::move(plan));
+    plan = cutAtFirstUnsafe(context, facingTravel(context, std::move(plan)));
     if (!plan.waypoints.empty())
         return plan;
     if (!hoverSafe)
         return bestEscape(context);
-    return wait(plan.reason);
+    return wait(context, plan.reason);
 }
 
 bool DaepPlanner::keepFlying(const PlanningContext& context, const Plan& plan,

@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "ConfigChecks.h"
 #include "daep/common/Config.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/planning/Tree.h"
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "ConfigChecks.h"
 #include "RayGeometry.h"
 #include "daep/common/Config.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/common/Types.h"
 #include "daep/mapping/ExplorationMap.h"
 

@@ -78,7 +78,11 @@ public:
                  double gain, int waypoints, const std::string& reason = "");
     /** One planner call of a replay (PlansFormat::Replay); its real time counts as charged. */
     void addReplayPlan(const ReplayPlanRecord& plan);
-    void addCollision(int personIndex, double start, double end);
+    /**
+     * One collision episode. `tracked`: whether the planner was tracking that person when it
+     * began (1 / 0), or -1 when the planner does not look at people.
+     */
+    void addCollision(int personIndex, double start, double end, int tracked = -1);
 
     const std::vector<MetricsSample>& samples() const { return samples_; }
     const std::vector<double>& chargedPlanTimes() const { return chargedPlanTimes_; }
@@ -96,6 +100,7 @@ private:
     struct Collision {
         int person;
         double start, end;
+        int tracked;
     };
     std::string directory_;
     std::FILE* timeseries_ = nullptr;

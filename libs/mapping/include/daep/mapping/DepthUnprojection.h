@@ -11,6 +11,15 @@ class CObservation3DRangeScan;
 
 namespace daep::mapping {
 
+/** Sensor axes and position in the world (X forward, Y left, Z up), float for pixel loops. */
+struct SensorFrame {
+    Eigen::Vector3f forward, left, up, origin;
+};
+
+/** Where the observation's sensor is for a robot at `robot` (robot pose + obs.sensorPose). */
+SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
+                               const FlatPose& robot);
+
 /**
  * World-frame points of every pixel with a return (depth > 0), in row-major pixel order: the
  * same points and order as CObservation3DRangeScan::unprojectInto with the sensor pose and the

@@ -55,6 +55,8 @@ public:
                  const sim::CameraParams& camera, const Eigen::Vector3d& bodySize);
 
     bool detects() const { return params_.source == "detected"; }
+    /** Whether people are known only where the camera looks (sensed or detected). */
+    bool fromCamera() const { return params_.source != "ground_truth"; }
     /**
      * With people_source = detected: finds people in the frame seen from `robot`; call it
      * before the frame goes into the map (the detector looks for what the map contradicts).

@@ -24,6 +24,12 @@ struct DaepParams {
     bool useGp = true;
     double evasionHorizon = 3.0;  ///< hovering must stay safe this long, or the drone escapes
     double waitTime = 0.4;        ///< hover this long when no move is safe and none is needed
+    /**
+     * Turn to the direction of travel, fly, then turn to the view, so that the camera sees
+     * who is in the way: always, never (AEP's turn to the view, then fly), or auto (when the
+     * people come from the camera).
+     */
+    std::string faceTravel = "auto";
 
     static DaepParams fromConfig(const mrpt::config::CConfigFileBase& config);
 };
@@ -71,9 +77,10 @@ public:
                                          std::size_t fromWaypoint) const;
 
 protected:
-    YawGain viewAt(const PlanningContext& context, const Eigen::Vector3d& p, double arrival,
-                   bool rayCast) override;
+    YawGain viewAt(const PlanningContext& context, const Eigen::Vector3d& from,
+                   const Eigen::Vector3d& p, double arrival, bool rayCast) override;
     bool moveSafe(const FlatPose& from, double start, const FlatPose& to) const override;
+    double moveTime(const FlatPose& a, const FlatPose& b) const override;
     double branchValue(double parentValue, double gain, double edge,
                        const Eigen::Vector3d& p) const override;
 
@@ -82,9 +89,14 @@ private:
     /** The plan up to its first unsafe move (at least one move, or none). */
     Plan cutAtFirstUnsafe(const PlanningContext& context, Plan plan) const;
     Plan bestEscape(const PlanningContext& context) const;
-    Plan wait(const std::string& why) const;
+    /** The poses flown from a to b: with faceTravel, turning to the heading of travel first. */
+    std::vector<FlatPose> movePoses(const FlatPose& a, const FlatPose& b) const;
+    /** With faceTravel, every waypoint reached heading along its leg, then turned to its yaw. */
+    Plan facingTravel(const PlanningContext& context, Plan plan) const;
+    Plan wait(const PlanningContext& context, const std::string& why) const;
 
     DaepParams params_;
+    bool facingTravel_ = false;  ///< faceTravel decided for the current context
     DynamicObstacles obstacles_;
     FrequencyMap dfm_;
     double lastObservation_ = -1e300;

@@ -64,6 +64,8 @@ struct PlanningContext {
     MotionLimits motion;
     /** People as tracked now (planners that usePeople()); null when there are none. */
     const std::vector<perception::PersonForecast>* people = nullptr;
+    /** The people come from the drone's own camera: nobody is known where it does not look. */
+    bool peopleFromCamera = false;
     Eigen::Vector3d droneSize{0.4, 0.4, 0.1};
     Eigen::Vector3d personSize{1.0, 1.0, 1.8};
 };

@@ -6,7 +6,7 @@
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 
-namespace daep::planning {
+namespace daep {
 
 /** Range checks on top of ConfigReader; errors name "[section] key" like ConfigReader's own. */
 [[noreturn]] inline void failRange(const ConfigReader& r, const std::string& key, double value,
@@ -48,4 +48,4 @@ inline int requireIntAtLeast(const ConfigReader& r, const std::string& key, int 
     return v;
 }
 
-}  // namespace daep::planning
+}  // namespace daep
