@@ -150,6 +150,34 @@ TEST(InsertObservation, FarWallOnlyClearsUpToMaxRange) {
     EXPECT_TRUE(map.isUnknown({8.1, 0.0, 0.0}));
 }
 
+TEST(InsertObservation, NoReturnPixelsClearTheirRaysOnlyWhenAskedTo) {
+    Aabb box;
+    box.min = {-1, -8, -4};
+    box.max = {10, 8, 4};
+    const auto sky = makeFrame(80, 60, 0.0, mrpt::poses::CPose3D());  // nothing returns
+    ExplorationMap indoor(MapParams{}, box);
+    indoor.insertObservation(sky, FlatPose{});
+    EXPECT_EQ(indoor.knownVolumeInBox(), 0.0);
+    MapParams params;
+    params.noReturnIsFree = true;
+    ExplorationMap outdoor(params, box);
+    outdoor.insertObservation(sky, FlatPose{});
+    for (const double x : {1.0, 3.0, 4.7})
+        EXPECT_TRUE(outdoor.isFree({x, 0.0, 0.0})) << x;
+    for (const double x : {1.0, 2.0, 3.3})  // towards a corner, up to 4.7 m away
+        EXPECT_TRUE(outdoor.isFree({x, 0.8 * x, -0.6 * x})) << x;
+    EXPECT_TRUE(outdoor.isUnknown({5.6, 0.0, 0.0}));   // beyond max_range
+    EXPECT_TRUE(outdoor.isUnknown({-0.8, 0.0, 0.0}));  // behind the camera
+    // Free only: nothing is marked occupied at the rays' ends.
+    for (double x = 4.8; x < 6.0; x += 0.2)
+        EXPECT_FALSE(outdoor.isOccupied({x, 0.0, 0.0})) << x;
+    // Where a pixel does return, its wall is kept as it is.
+    ExplorationMap mixed(params, box);
+    mixed.insertObservation(makeFrame(80, 60, 3.0, mrpt::poses::CPose3D()), FlatPose{});
+    EXPECT_TRUE(mixed.isOccupied({3.0, 0.0, 0.0}));
+    EXPECT_TRUE(mixed.isUnknown({4.0, 0.0, 0.0}));
+}
+
 TEST(InsertObservation, EqualsInsertingTheUnprojectedCloud) {
     auto obs = makeFrame(96, 72, 3.0, mrpt::poses::CPose3D(0.1, 0, 0.1, 0, 0.1, 0));
     std::mt19937 rng(77);

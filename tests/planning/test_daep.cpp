@@ -159,6 +159,9 @@ TEST_F(DaepRoom, TheEscapeMovesAtOnceToSafetyPreferringWhatTheCameraSees) {
     EXPECT_LT(clearanceVia(root), 0.0);
     EXPECT_GT(clearanceVia(goal.position), 0.0) << plan.reason;
     EXPECT_EQ(plan.reason.find("blind"), std::string::npos) << plan.reason;
+    // In flight the escape is not stopped by the person it escapes from.
+    EXPECT_TRUE(plan.escape);
+    EXPECT_TRUE(planner.keepFlying(ctx, plan, 0));
     // No shorter safe escape along the camera's view (or, if the escape is blind, none at all).
     const Eigen::Vector2d chosen = (goal.position - root).head<2>();
     const bool chosenSeen =

@@ -1,5 +1,7 @@
 #include <cstdint>
 
+#include <algorithm>
+
 #include "DepthPixels.h"
 #include "MapImpl.h"
 #include "daep/mapping/DepthUnprojection.h"
@@ -69,9 +71,34 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
         previous = packed;
         above = packed;
     });
+    if (params_.noReturnIsFree)
+        addNoReturnRays(obs, frame);
     const octomap::point3d o(frame.origin.x(), frame.origin.y(), frame.origin.z());
     knownInBox_ += m.integrate(o, params_.maxRange);
     ++revision_;
+}
+
+void ExplorationMap::addNoReturnRays(const mrpt::obs::CObservation3DRangeScan& obs,
+                                     const SensorFrame& frame) {
+    const auto& image = obs.rangeImage;
+    const auto& cam = obs.cameraParams;
+    // A pixel subset whose neighbouring rays stay within half a cell of each other at maxRange.
+    const int stride = std::max(
+        1, int(0.5 * params_.resolution * std::min(cam.fx(), cam.fy()) / params_.maxRange));
+    // Beyond maxRange: the ray is cleared up to maxRange and no end point is marked occupied.
+    const float beyond = float(params_.maxRange + 2.0 * params_.resolution);
+    for (int v = 0; v < int(image.rows()); v += stride) {
+        const float kz = float((cam.cy() - v) / cam.fy());
+        for (int u = 0; u < int(image.cols()); u += stride) {
+            if (image(v, u) > 0)
+                continue;
+            const float ky = float((cam.cx() - u) / cam.fx());
+            const Eigen::Vector3f dir =
+                (frame.forward + kz * frame.up + ky * frame.left).normalized();
+            const Eigen::Vector3f end = frame.origin + beyond * dir;
+            impl_->cloud.push_back(octomap::point3d(end.x(), end.y(), end.z()));
+        }
+    }
 }
 
 }  // namespace daep::mapping

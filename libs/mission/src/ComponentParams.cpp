@@ -52,6 +52,7 @@ mapping::MapParams loadMapParams(const mrpt::config::CConfigFileBase& cfg) {
     p.probMiss = r.requireDouble("prob_miss");
     p.clampMin = r.requireDouble("clamp_min");
     p.clampMax = r.requireDouble("clamp_max");
+    p.noReturnIsFree = r.requireBool("no_return_free");
     if (p.probHit <= 0.5 || p.probHit >= 1)
         throw InputError("[map] prob_hit: must be in (0.5, 1)");
     if (p.probMiss <= 0 || p.probMiss >= 0.5)

@@ -284,6 +284,7 @@ Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
         return wait(context, "a person is coming and no escape is free of static obstacles");
     Plan plan;
     plan.status = Plan::Status::Path;
+    plan.escape = true;
     plan.waypoints.push_back(
         {best.goal, context.time + context.motion.travelTime(context.pose, best.goal)});
     std::ostringstream why;
@@ -313,6 +314,8 @@ bool DaepPlanner::keepFlying(const PlanningContext& context, const Plan& plan,
     observePeople(context);
     if (!AepPlanner::keepFlying(context, plan, nextWaypoint))
         return false;
+    if (plan.escape)
+        return true;  // already the move with the most clearance: stopping it helps nobody
     for (const TimedSegment& move : timedMoves(context, plan, nextWaypoint)) {
         if (move.start > context.time + params_.safety.horizon)
             break;

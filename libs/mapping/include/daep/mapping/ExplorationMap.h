@@ -17,6 +17,8 @@ class OcTree;
 
 namespace daep::mapping {
 
+struct SensorFrame;
+
 enum class CellState : std::uint8_t { Unknown = 0, Free = 1, Occupied = 2 };
 
 struct MapParams {
@@ -26,6 +28,11 @@ struct MapParams {
     double probMiss = 0.4;
     double clampMin = 0.12;
     double clampMax = 0.97;
+    /**
+     * Pixels with no return (nothing within the camera's range, which must exceed maxRange)
+     * clear their ray up to maxRange: outdoors the open sky is otherwise never known.
+     */
+    bool noReturnIsFree = false;
 };
 
 /**
@@ -98,6 +105,9 @@ public:
     std::uint64_t revision() const { return revision_; }
 
 private:
+    /** With noReturnIsFree: end points beyond maxRange for the pixels with no return. */
+    void addNoReturnRays(const mrpt::obs::CObservation3DRangeScan& obs, const SensorFrame& frame);
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
     MapParams params_;

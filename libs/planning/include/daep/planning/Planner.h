@@ -49,6 +49,8 @@ struct Plan {
     std::vector<Waypoint> waypoints;
     /** With no waypoints: hover this long, then plan again (waiting for people to pass). */
     double waitSeconds = 0.0;
+    /** An escape from a person: the best move there is, flown to its end without re-checks. */
+    bool escape = false;
     double gain = 0.0;   ///< gain of the chosen goal (m^3 of unknown volume)
     double score = 0.0;  ///< planner-specific value of the chosen branch
     std::string reason;  ///< short human-readable note (why finished, local/global, ...)
