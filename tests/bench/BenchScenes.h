@@ -1,5 +1,6 @@
 #pragma once
 
+#include <benchmark/benchmark.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <algorithm>
@@ -8,7 +9,11 @@
 #include <random>
 #include <vector>
 
+#include "../planning/PlanningTestUtil.h"
 #include "daep/mapping/ExplorationMap.h"
+#include "daep/perception/PersonTrack.h"
+#include "daep/planning/GainEvaluator.h"
+#include "daep/planning/Planner.h"
 #include "daep/sim/DepthCamera.h"
 #include "daep/world/RayCaster.h"
 #include "daep/world/WorldSpec.h"
@@ -48,6 +53,67 @@ inline std::unique_ptr<mapping::ExplorationMap> lookAroundAtStarts(const world::
 inline double quantile(std::vector<double> v, double q) {
     std::sort(v.begin(), v.end());
     return v[static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1)))];
+}
+
+/** Where plan-call benchmarks plan from: a map, poses to plan at, and the people tracked. */
+struct PlanScene {
+    world::WorldSpec world;
+    std::unique_ptr<mapping::ExplorationMap> map;
+    std::vector<FlatPose> poses;
+    std::vector<perception::PersonForecast> people;
+    double time = 0.0;
+};
+
+/**
+ * One planning call per repetition (so the aggregates are over calls), by a planner of type
+ * PlannerT built from the defaults files with a new seed each time. Arg 0: the planner planned
+ * twice before from the pose (warm cache and kept branch, as in a mission); arg 1: a fresh
+ * planner. Counters: share of calls that went global, ray casts, share that gave a path.
+ */
+template <class PlannerT, class ParamsT>
+void benchPlanCalls(benchmark::State& state, const PlanScene& scene) {
+    const auto cfg = planning::test::configFromText(planning::test::defaultsText());
+    const auto params = ParamsT::fromConfig(*cfg);
+    const auto gain = planning::GainParams::fromConfig(*cfg);
+    static std::uint64_t seed = 0;
+    double global = 0.0, rayCasts = 0.0, moved = 0.0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        ++seed;
+        PlannerT planner(params, gain, seed);
+        planning::PlanningContext ctx;
+        ctx.time = scene.time;
+        ctx.pose = scene.poses[seed % scene.poses.size()];
+        ctx.map = scene.map.get();
+        ctx.explorationBox = scene.world.explorationBox;
+        ctx.people = scene.people.empty() ? nullptr : &scene.people;
+        for (int warm = 0; warm < (state.range(0) == 0 ? 2 : 0); ++warm)
+            planner.plan(ctx);
+        state.ResumeTiming();
+        const planning::Plan plan = planner.plan(ctx);
+        benchmark::DoNotOptimize(plan);
+        global += planner.stats().global ? 1.0 : 0.0;
+        rayCasts += planner.stats().rayCasts;
+        moved += plan.waypoints.empty() ? 0.0 : 1.0;
+    }
+    using benchmark::Counter;
+    state.counters["global"] = Counter(global, Counter::kAvgIterations);
+    state.counters["ray_casts"] = Counter(rayCasts, Counter::kAvgIterations);
+    state.counters["with_path"] = Counter(moved, Counter::kAvgIterations);
+    state.counters["coverage_%"] = 100.0 * scene.map->coverage();
+    state.counters["people"] = static_cast<double>(scene.people.size());
+}
+
+/** 200 single-call repetitions, reported as mean, median, p95 and max. */
+inline void asPlanCalls(benchmark::internal::Benchmark* b) {
+    b->Arg(0)
+        ->Arg(1)
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(200)
+        ->ReportAggregatesOnly(true)
+        ->ComputeStatistics("p95", [](const std::vector<double>& v) { return quantile(v, 0.95); })
+        ->ComputeStatistics("max", [](const std::vector<double>& v) { return quantile(v, 1.0); });
 }
 
 }  // namespace daep::bench

@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "daep/common/AppMain.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/Mission.h"
@@ -121,7 +122,7 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
 }
 
 int ExploreApp::run() {
-    try {
+    return runApp([&] {
         const ExperimentConfig config = ExperimentConfig::fromFile(configPath_, overrides_);
         if (!quiet_)
             std::cout << "# Effective parameters (" << configPath_ << ")\n" << config.dump();
@@ -137,13 +138,7 @@ int ExploreApp::run() {
         }
         printSummary(summary_, outputDir_);
         return summary_.endReason == "interrupted" ? 130 : 0;
-    } catch (const InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 2;
-    }
+    });
 }
 
 }  // namespace daep::mission
