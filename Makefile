@@ -4,6 +4,7 @@ BUILD_TYPE ?= Release
 JOBS ?= $(shell nproc)
 DEMO_CONFIG ?= config-ini/exhibition_dynamic.ini
 DEMO_OUT ?= out/demo
+DEMO_PLANNER ?= daep
 
 CMAKE_FLAGS = -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
 ifneq ($(shell command -v ccache 2>/dev/null),)
@@ -24,7 +25,7 @@ build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
 demo: build
-	$(BUILD_DIR)/apps/daep-explore/daep-explore $(DEMO_CONFIG) --out $(DEMO_OUT)
+	$(BUILD_DIR)/apps/daep-explore/daep-explore $(DEMO_CONFIG) --set experiment.planner=$(DEMO_PLANNER) --out $(DEMO_OUT)
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
