@@ -32,10 +32,7 @@ std::vector<Eigen::Vector3d> bodySamples(const world::PersonState& person,
 PeopleInputParams PeopleInputParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     const ConfigReader r(config, "tracking");
     PeopleInputParams p;
-    p.source = r.requireString("people_source");
-    if (p.source != "ground_truth" && p.source != "sensed" && p.source != "detected")
-        throw InputError("[tracking] people_source: '" + p.source +
-                         "' must be ground_truth, sensed or detected");
+    p.source = requireOneOf(r, "people_source", {"ground_truth", "sensed", "detected"});
     p.sensedRange = requirePositive(r, "sensed_range");
     p.sensedNoiseSigma = r.requireDouble("sensed_noise_sigma");
     if (p.sensedNoiseSigma < 0)

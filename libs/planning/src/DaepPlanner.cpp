@@ -31,18 +31,13 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.recheckClearanceScale = requireNonNegative(r, "recheck_clearance_scale");
     p.dfmCellSize = requirePositive(r, "dfm_cell_size");
     p.zeta = requireNonNegative(r, "zeta");
-    p.score = r.requireString("score");
-    if (p.score != "paper" && p.score != "reference")
-        throw InputError("config: [daep] score: '" + p.score + "' must be paper or reference");
+    p.score = requireOneOf(r, "score", {"paper", "reference"});
     p.borderBoost = requirePositive(r, "border_boost");
     p.borderDistance = requireNonNegative(r, "border_distance");
     p.useGp = r.requireBool("use_gp");
     p.evasionHorizon = requirePositive(r, "evasion_horizon_s");
     p.waitTime = requirePositive(r, "wait_s");
-    p.faceTravel = r.requireString("face_travel_direction");
-    if (p.faceTravel != "auto" && p.faceTravel != "true" && p.faceTravel != "false")
-        throw InputError("config: [daep] face_travel_direction: '" + p.faceTravel +
-                         "' must be auto, true or false");
+    p.faceTravel = requireOneOf(r, "face_travel_direction", {"auto", "true", "false"});
     return p;
 }
 

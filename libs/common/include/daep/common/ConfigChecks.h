@@ -2,6 +2,7 @@
 
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
@@ -46,6 +47,19 @@ inline int requireIntAtLeast(const ConfigReader& r, const std::string& key, int 
     if (v < lo)
         failRange(r, key, v, "must be >= " + std::to_string(lo));
     return v;
+}
+
+/** One of the listed words; the error names the key, the value and the words allowed. */
+inline std::string requireOneOf(const ConfigReader& r, const std::string& key,
+                                const std::vector<std::string>& allowed) {
+    const std::string v = r.requireString(key);
+    for (const std::string& a : allowed)
+        if (v == a)
+            return v;
+    std::string list;
+    for (std::size_t i = 0; i < allowed.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == allowed.size() ? " or " : ", ") + allowed[i];
+    throw InputError("config: [" + r.section() + "] " + key + ": '" + v + "' must be " + list);
 }
 
 }  // namespace daep
