@@ -263,3 +263,45 @@ TEST_F(DaepRoom, FacingTravelFliesEveryLegLookingAheadThenTurnsToTheView) {
 
 }  // namespace
 }  // namespace daep::planning
+
+namespace daep::planning {
+namespace {
+
+TEST(DaepPlanner, PutsOffFinishingWhilePeopleBlockItsTrees) {
+    // A 4 x 4 x 2 m room seen whole from its centre: nothing is left to explore.
+    auto map = test::makeMap(test::box(0, 0, 0, 4, 4, 2), 6.0);
+    const Eigen::Vector3d centre(2.0, 2.0, 1.0);
+    map->insertPointCloud(centre,
+                          test::roomScan(test::box(-0.1, -0.1, -0.1, 4.1, 4.1, 2.1), centre, 0.5));
+    // Small global trees and a short patience keep the test quick.
+    std::string text = daepText("global_max_samples", "300");
+    const std::string three = "3";
+    text = test::editKey(text, "daep", "global_planner_counter", &three);
+    const auto cfg = test::configFromText(text);
+    auto planner = [&] {
+        return DaepPlanner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 1);
+    };
+    DaepPlanner alone = planner();
+    EXPECT_EQ(alone.plan(contextFor(*map, centre)).status, Plan::Status::Finished);
+
+    DaepPlanner crowded = planner();
+    PlanningContext ctx = contextFor(*map, centre);
+    const int patience = crowded.params().globalPlannerCounter;
+    int deferred = 0;
+    for (int k = 0; k <= patience + 1; ++k) {
+        // Someone keeps walking across the room: most moves in it are unsafe.
+        const std::vector<PersonForecast> people{walker(0, {0.3, 1.6}, {0.35, 0}, ctx.time)};
+        ctx.people = &people;
+        const Plan plan = crowded.plan(ctx);
+        if (plan.status == Plan::Status::Finished)
+            break;
+        ++deferred;
+        ctx.time += 1.0;
+    }
+    // Not at once, but not for ever either.
+    EXPECT_GE(deferred, 1);
+    EXPECT_LE(deferred, patience);
+}
+
+}  // namespace
+}  // namespace daep::planning
