@@ -301,7 +301,8 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
         // Trees that people kept from growing are no verdict on the map: look around, retry.
         if (blockedMoves_ == 0 || ++deferredFinishes_ > params().globalPlannerCounter)
             return plan;
-        return wait(context, "people block the way; " + plan.reason);
+        return hoverSafe ? wait(context, "people block the way; " + plan.reason)
+                         : bestEscape(context);
     }
     plan = cutAtFirstUnsafe(context, facingTravel(context, std::move(plan)));
     if (!plan.waypoints.empty()) {
