@@ -301,8 +301,7 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
         // Trees that people kept from growing are no verdict on the map: look around, retry.
         if (blockedMoves_ == 0 || ++deferredFinishes_ > params().globalPlannerCounter)
             return plan;
-        return hoverSafe ? wait(context, "people block the way; " + plan.reason)
-                         : bestEscape(context);
+        return wait(context, "people block the way; " + plan.reason);
     }
     plan = cutAtFirstUnsafe(context, facingTravel(context, std::move(plan)));
     if (!plan.waypoints.empty()) {
