@@ -127,10 +127,8 @@ bool DaepPlanner::moveSafe(const FlatPose& from, double start, const FlatPose& t
     FlatPose at = from;
     for (const FlatPose& next : movePoses(from, to)) {
         const TimedSegment move = timedSegment(at, next, start, motion().speed, motion().yawRate);
-        if (!obstacles_.isSafe(move)) {
-            ++blockedMoves_;
+        if (!obstacles_.isSafe(move))
             return false;
-        }
         start = move.end();
         at = next;
     }
@@ -295,19 +293,12 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
     observePeople(context);
     const bool hoverSafe = obstacles_.isSafeToHover(context.pose.position, context.time,
                                                     context.time + params_.evasionHorizon);
-    blockedMoves_ = 0;
     Plan plan = AepPlanner::plan(context);
-    if (plan.status == Plan::Status::Finished) {
-        // Trees that people kept from growing are no verdict on the map: look around, retry.
-        if (blockedMoves_ == 0 || ++deferredFinishes_ > params().globalPlannerCounter)
-            return plan;
-        return wait(context, "people block the way; " + plan.reason);
-    }
-    plan = cutAtFirstUnsafe(context, facingTravel(context, std::move(plan)));
-    if (!plan.waypoints.empty()) {
-        deferredFinishes_ = 0;
+    if (plan.status == Plan::Status::Finished)
         return plan;
-    }
+    plan = cutAtFirstUnsafe(context, facingTravel(context, std::move(plan)));
+    if (!plan.waypoints.empty())
+        return plan;
     if (!hoverSafe)
         return bestEscape(context);
     return wait(context, plan.reason);

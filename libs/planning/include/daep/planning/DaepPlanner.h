@@ -100,8 +100,6 @@ private:
     DynamicObstacles obstacles_;
     FrequencyMap dfm_;
     double lastObservation_ = -1e300;
-    mutable int blockedMoves_ = 0;  ///< moves of the current plan() rejected for people
-    int deferredFinishes_ = 0;      ///< "finished" verdicts put off in a row because of them
 };
 
 }  // namespace daep::planning
