@@ -124,12 +124,9 @@ struct Mission::Impl {
         if (!world.people.empty())
             caster.setPeople(people.states(), people.params().bodySize);
         camera.render(caster, drone.pose(), t, noiseRng, frame);
-        if (planner->usesPeople() && peopleInput.detects())
-            peopleInput.detect(t, frame, drone.pose(), map);
-        map.insertObservation(frame, drone.pose());
         if (planner->usesPeople())
-            peopleInput.observe(t, people.states(), caster, camera.sensorPose(drone.pose()),
-                                camera.params(), people.params().bodySize);
+            observePeople();  // before the map takes the frame: the detector needs the old map
+        map.insertObservation(frame, drone.pose());
         recorder.addPose(t, drone.pose());
         if (rawlog)
             rawlog->addFrame(frame, t, drone.pose(), people.states(), people.params().bodySize);
@@ -139,6 +136,14 @@ struct Mission::Impl {
             writeScene();
             nextScene += outputs.sceneEvery;
         }
+    }
+
+    void observePeople() {
+        if (peopleInput.detects())
+            peopleInput.detect(t, frame, drone.pose(), map);
+        else
+            peopleInput.observe(t, people.states(), caster, camera.sensorPose(drone.pose()),
+                                camera.params(), people.params().bodySize);
     }
 
     void writeScene() {

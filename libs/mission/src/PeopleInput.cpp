@@ -34,9 +34,7 @@ PeopleInputParams PeopleInputParams::fromConfig(const mrpt::config::CConfigFileB
     PeopleInputParams p;
     p.source = requireOneOf(r, "people_source", {"ground_truth", "sensed", "detected"});
     p.sensedRange = requirePositive(r, "sensed_range");
-    p.sensedNoiseSigma = r.requireDouble("sensed_noise_sigma");
-    if (p.sensedNoiseSigma < 0)
-        throw InputError("[tracking] sensed_noise_sigma: must be >= 0");
+    p.sensedNoiseSigma = requireNonNegative(r, "sensed_noise_sigma");
     p.tracker = loadTrackerParams(config);
     p.detector = loadDetectorParams(config);
     return p;
@@ -48,7 +46,6 @@ PeopleInput::PeopleInput(const PeopleInputParams& params, std::uint64_t seed)
 void PeopleInput::detect(double t, const mrpt::obs::CObservation3DRangeScan& frame,
                          const FlatPose& robot, const mapping::ExplorationMap& map) {
     const std::vector<perception::PersonMeasurement> found = detector_.detect(frame, robot, map);
-    measurements_ += static_cast<long>(found.size());
     tracker_.update(t, found);
     forecasts_ = tracker_.forecasts();
 }
@@ -78,8 +75,6 @@ bool PeopleInput::visible(const world::RayCaster& scene, const FlatPose& sensor,
 void PeopleInput::observe(double t, const std::vector<world::PersonState>& truth,
                           const world::RayCaster& scene, const FlatPose& sensor,
                           const sim::CameraParams& camera, const Eigen::Vector3d& bodySize) {
-    if (detects())
-        return;
     std::vector<perception::PersonMeasurement> seen;
     const bool sensed = params_.source == "sensed";
     const double sigma = sensed ? params_.sensedNoiseSigma : 0.0;
@@ -97,7 +92,6 @@ void PeopleInput::observe(double t, const std::vector<world::PersonState>& truth
         m.covariance = Eigen::Matrix2d::Identity() * r * r;
         seen.push_back(m);
     }
-    measurements_ += static_cast<long>(seen.size());
     tracker_.update(t, seen);
     forecasts_ = tracker_.forecasts();
 }

@@ -46,7 +46,12 @@ double largestSigma(const Eigen::Matrix2d& c) {
 
 double DynamicObstacles::keepOutRadius(const perception::PersonForecast& person, double t,
                                        double clearanceScale) const {
-    const double sigma = largestSigma(person.at(t).covariance);
+    return keepOutRadius(person.at(t), clearanceScale);
+}
+
+double DynamicObstacles::keepOutRadius(const perception::PositionPrediction& at,
+                                       double clearanceScale) const {
+    const double sigma = largestSigma(at.covariance);
     return bodyRadius_ + clearanceScale * params_.clearance +
            std::min(params_.maxInflation, params_.sigmaInflation * sigma);
 }
@@ -73,8 +78,9 @@ double DynamicObstacles::gapTo(const perception::PersonForecast& person, const T
         const double t = t0 + k * h;
         const Eigen::Vector3d d = move.positionAt(t);
         const double above = d.z() - (bodyTop_ + clearanceScale * params_.clearance);
-        const double horizontal = (d.head<2>() - person.at(t).mean).norm() -
-                                  keepOutRadius(person, t, clearanceScale) - slack;
+        const perception::PositionPrediction body = person.at(t);
+        const double horizontal =
+            (d.head<2>() - body.mean).norm() - keepOutRadius(body, clearanceScale) - slack;
         gap = std::min(gap, std::max(horizontal, above));
     }
     return gap;

@@ -49,7 +49,10 @@ class PeopleInput {
 public:
     PeopleInput(const PeopleInputParams& params, std::uint64_t seed);
 
-    /** One frame at time t seen from the camera at `sensor` (x forward, z up). */
+    /**
+     * With people_source = ground_truth or sensed: one frame at time t, the people measured
+     * from the simulator's truth as seen by the camera at `sensor` (x forward, z up).
+     */
     void observe(double t, const std::vector<world::PersonState>& truth,
                  const world::RayCaster& scene, const FlatPose& sensor,
                  const sim::CameraParams& camera, const Eigen::Vector3d& bodySize);
@@ -65,7 +68,6 @@ public:
                 const mapping::ExplorationMap& map);
 
     const std::vector<perception::PersonForecast>& forecasts() const { return forecasts_; }
-    long measurements() const { return measurements_; }
 
     /**
      * Whether the camera at `sensor` sees person `index`: some ray from it to a point of the
@@ -82,7 +84,6 @@ private:
     perception::PeopleDetector detector_;
     std::mt19937_64 rng_;
     std::vector<perception::PersonForecast> forecasts_;
-    long measurements_ = 0;
 };
 
 }  // namespace daep::mission

@@ -32,7 +32,7 @@ struct PositionPrediction {
  */
 struct PersonForecast {
     int id = -1;
-    double time = 0.0;  ///< time of the state
+    double time = 0.0;                                     ///< time of the state
     Eigen::Vector4d state = Eigen::Vector4d::Zero();       ///< [x y vx vy]
     Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();  ///< of the state
     double accelNoise = 0.0;  ///< spectral density of the white-noise acceleration

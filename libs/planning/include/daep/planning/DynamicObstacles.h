@@ -73,6 +73,7 @@ public:
                          double clearanceScale) const;
 
 private:
+    double keepOutRadius(const perception::PositionPrediction& at, double clearanceScale) const;
     double gapTo(const perception::PersonForecast& person, const TimedSegment& move,
                  double clearanceScale) const;
 
