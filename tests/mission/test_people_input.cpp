@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <Eigen/Geometry>
 #include <fstream>
@@ -8,6 +9,7 @@
 
 #include "daep/common/Error.h"
 #include "daep/mission/PeopleInput.h"
+#include "daep/sim/DepthCamera.h"
 #include "daep/world/RayCaster.h"
 
 namespace daep::mission {
@@ -79,7 +81,8 @@ std::string trackingSection(const std::string& source) {
     return "[tracking]\npeople_source = " + source +
            "\nsensed_range = 5\nsensed_noise_sigma = 0.05\n"
            "[tracker]\naccel_noise = 0.02\nmeasurement_sigma = 0.02\ninitial_speed_sigma = 1\n"
-           "drop_after_s = 2\ngate_chi2 = 9.21\nconfirm_hits = 3\ntentative_drop_after_s = 1\n" +
+           "drop_after_s = 2\ndrop_after_misses_in_view = 3\ngate_chi2 = 9.21\nconfirm_hits = 3\n"
+           "tentative_drop_after_s = 1\n" +
            detectorSection();
 }
 
@@ -103,6 +106,52 @@ TEST_F(SensedPeople, SensedTracksOnlyWhoIsSeenAndForgetsThemAfterTheTimeout) {
     EXPECT_EQ(input.forecasts().size(), 1u);
     input.observe(4.1, gone, caster, camera, cameraParams, body);
     EXPECT_EQ(input.forecasts().size(), 0u);
+}
+
+TEST_F(SensedPeople, ATrackWhosePlaceTheDepthFrameSeesEmptyIsDroppedAfterThreeFrames) {
+    const mrpt::config::CConfigFileMemory cfg(trackingSection("sensed"));
+    PeopleInput withView(PeopleInputParams::fromConfig(cfg), 1);
+    PeopleInput withoutView(PeopleInputParams::fromConfig(cfg), 1);
+    const sim::DepthCamera depthCamera(cameraParams);
+    std::mt19937_64 rng(1);
+    mrpt::obs::CObservation3DRangeScan frame;
+    auto observe = [&](double t, const std::vector<world::PersonState>& people) {
+        caster.setPeople(people, body);
+        depthCamera.render(caster, camera, t, rng, frame);
+        withView.observe(t, people, caster, camera, cameraParams, body, {&frame, camera});
+        withoutView.observe(t, people, caster, camera, cameraParams, body);
+    };
+    // Person 0 stands in view, 3 m ahead, then is gone (behind the camera) all of a sudden.
+    for (int k = 0; k <= 5; ++k)
+        observe(0.2 * k, {standing(3.0, 0.0)});
+    ASSERT_EQ(withView.forecasts().size(), 1u);
+    const std::vector<world::PersonState> gone{standing(-3.0, 0.0)};
+    observe(1.2, gone);
+    observe(1.4, gone);
+    EXPECT_EQ(withView.forecasts().size(), 1u);  // two frames saw the place empty
+    observe(1.6, gone);
+    EXPECT_EQ(withView.forecasts().size(), 0u);     // the third drops the track
+    EXPECT_EQ(withoutView.forecasts().size(), 1u);  // without depth it waits for drop_after_s
+}
+
+TEST_F(SensedPeople, AWallInFrontOfThePredictionIsNoEvidenceTheyLeft) {
+    // Behind the wall at x = 3 the camera cannot tell whether anyone still stands there.
+    const mrpt::config::CConfigFileMemory cfg(trackingSection("ground_truth"));
+    PeopleInput input(PeopleInputParams::fromConfig(cfg), 1);
+    const sim::DepthCamera depthCamera(cameraParams);
+    std::mt19937_64 rng(1);
+    mrpt::obs::CObservation3DRangeScan frame;
+    const std::vector<world::PersonState> behindWall{standing(4.5, 3.0)};
+    caster.setPeople(behindWall, body);
+    input.observe(0.0, behindWall, caster, camera, cameraParams, body);
+    const std::vector<world::PersonState> nobody;
+    caster.setPeople(nobody, body);
+    for (int k = 1; k <= 5; ++k) {
+        depthCamera.render(caster, camera, 0.2 * k, rng, frame);
+        // Ground truth measures nobody now; the track lives on behind the wall.
+        input.observe(0.2 * k, nobody, caster, camera, cameraParams, body, {&frame, camera});
+    }
+    EXPECT_EQ(input.forecasts().size(), 1u);
 }
 
 TEST_F(SensedPeople, GroundTruthTracksEveryoneWherever) {

@@ -224,3 +224,29 @@ TEST(PeopleTracker, KnownIdsAndAnonymousDetectionsDoNotMix) {
     EXPECT_EQ(tracker.size(), 2u);  // the anonymous one is not given to the known id
     EXPECT_EQ(tracker.confirmedCount(), 1u);
 }
+
+TEST(PeopleTracker, ATrackThePlaceOfWhichIsSeenEmptyDiesAfterTheMissesInARow) {
+    TrackerParams params;
+    params.dropAfter = 100.0;  // the timeout alone would keep it
+    params.dropAfterMissesInView = 3;
+    PeopleTracker tracker(params);
+    tracker.update(0.0, {at(4, 1.0, 1.0), at(5, -3.0, 0.0)});
+    // Only the east half is in view, and seen empty; person 5 stands in the west, unseen.
+    const PeopleTracker::EmptyTest eastEmpty = [](const Eigen::Vector2d& p) { return p.x() > 0; };
+    tracker.update(0.2, {}, eastEmpty);
+    tracker.update(0.4, {}, eastEmpty);
+    tracker.update(0.6, {}, [](const Eigen::Vector2d&) { return false; });  // looked away
+    tracker.update(0.8, {}, eastEmpty);
+    tracker.update(1.0, {}, eastEmpty);
+    ASSERT_EQ(tracker.forecasts().size(), 2u);  // the look away broke the streak
+    tracker.update(1.2, {}, eastEmpty);
+    ASSERT_EQ(tracker.forecasts().size(), 1u);
+    EXPECT_EQ(tracker.forecasts()[0].id, 5);
+    // A measurement resets the count.
+    tracker.update(1.4, {at(5, -3.0, 0.0)}, eastEmpty);
+    const PeopleTracker::EmptyTest allEmpty = [](const Eigen::Vector2d&) { return true; };
+    tracker.update(1.6, {at(5, -3.0, 0.0)}, allEmpty);
+    tracker.update(1.8, {at(5, -3.0, 0.0)}, allEmpty);
+    tracker.update(2.0, {at(5, -3.0, 0.0)}, allEmpty);
+    EXPECT_EQ(tracker.forecasts().size(), 1u);  // measured every time: never a miss
+}

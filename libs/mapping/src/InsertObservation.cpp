@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdint>
 
 #include <algorithm>
@@ -28,6 +29,26 @@ SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
     };
     return {column(0), column(1), column(2),
             Eigen::Vector3f(float(sensor.x()), float(sensor.y()), float(sensor.z()))};
+}
+
+bool seesPast(const mrpt::obs::CObservation3DRangeScan& obs, const SensorFrame& frame,
+              const Eigen::Vector3f& point, float margin) {
+    const Eigen::Vector3f d = point - frame.origin;
+    const float depth = d.dot(frame.forward);
+    if (!obs.hasRangeImage || depth <= 1e-3f)
+        return false;
+    const auto& cam = obs.cameraParams;
+    const float ky = d.dot(frame.left) / depth, kz = d.dot(frame.up) / depth;
+    const int u = int(std::lround(cam.cx() - ky * cam.fx()));
+    const int v = int(std::lround(cam.cy() - kz * cam.fy()));
+    if (u < 0 || v < 0 || u >= int(obs.rangeImage.cols()) || v >= int(obs.rangeImage.rows()))
+        return false;
+    float measured = float(obs.rangeImage(v, u)) * obs.rangeUnits;
+    if (measured <= 0.0f)
+        return depth < obs.maxRange;
+    if (!obs.range_is_depth)
+        measured /= std::sqrt(1.0f + ky * ky + kz * kz);
+    return measured > depth + margin;
 }
 
 std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3DRangeScan& obs,

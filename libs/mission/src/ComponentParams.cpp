@@ -102,6 +102,7 @@ perception::TrackerParams loadTrackerParams(const mrpt::config::CConfigFileBase&
     p.predictor.measurementSigma = requirePositive(r, "measurement_sigma");
     p.predictor.initialSpeedSigma = requirePositive(r, "initial_speed_sigma");
     p.dropAfter = requirePositive(r, "drop_after_s");
+    p.dropAfterMissesInView = requireIntAtLeast(r, "drop_after_misses_in_view", 1);
     p.gateChi2 = requirePositive(r, "gate_chi2");
     p.confirmHits = requireIntAtLeast(r, "confirm_hits", 1);
     p.tentativeDropAfter = requirePositive(r, "tentative_drop_after_s");

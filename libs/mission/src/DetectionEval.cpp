@@ -15,6 +15,7 @@
 #include "daep/common/Error.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
+#include "daep/mission/PeopleInput.h"
 #include "daep/perception/PeopleDetector.h"
 #include "daep/perception/PeopleTracker.h"
 
@@ -174,7 +175,7 @@ public:
 
     FrameScore scoreFrame(const RawlogFrame& frame, double t, mapping::ExplorationMap& map) {
         const auto detections = detector_.detect(*frame.depth, frame.robot, map);
-        tracker_.update(t, detections);
+        tracker_.update(t, detections, seenEmptyIn({frame.depth.get(), frame.robot}, bodySize_));
         map.insertObservation(*frame.depth, frame.robot);
         const View view(*frame.depth, frame.robot);
         std::vector<Eigen::Vector2d> truth;

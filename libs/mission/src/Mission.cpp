@@ -140,10 +140,10 @@ struct Mission::Impl {
 
     void observePeople() {
         if (peopleInput.detects())
-            peopleInput.detect(t, frame, drone.pose(), map);
+            peopleInput.detect(t, frame, drone.pose(), map, people.params().bodySize);
         else
             peopleInput.observe(t, people.states(), caster, camera.sensorPose(drone.pose()),
-                                camera.params(), people.params().bodySize);
+                                camera.params(), people.params().bodySize, {&frame, drone.pose()});
     }
 
     void writeScene() {

@@ -6,6 +6,7 @@
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
+#include "daep/mapping/DepthUnprojection.h"
 #include "daep/world/RayCaster.h"
 
 namespace daep::mission {
@@ -29,6 +30,24 @@ std::vector<Eigen::Vector3d> bodySamples(const world::PersonState& person,
 
 }  // namespace
 
+perception::PeopleTracker::EmptyTest seenEmptyIn(const DepthView& view,
+                                                 const Eigen::Vector3d& bodySize) {
+    if (view.frame == nullptr)
+        return {};
+    const mapping::SensorFrame sensor = mapping::sensorFrameInWorld(*view.frame, view.robot);
+    const mrpt::obs::CObservation3DRangeScan& frame = *view.frame;
+    return [&frame, sensor, bodySize](const Eigen::Vector2d& xy) {
+        const Eigen::Vector3f middle(float(xy.x()), float(xy.y()), float(0.5 * bodySize.z()));
+        Eigen::Vector3f across = sensor.up.cross(middle - sensor.origin);
+        across = across.norm() > 1e-6f ? across.normalized() : sensor.left;
+        const float half = float(0.3 * bodySize.x());
+        for (const float side : {-half, 0.0f, half})
+            if (!mapping::seesPast(frame, sensor, middle + side * across, float(0.1)))
+                return false;
+        return true;
+    };
+}
+
 PeopleInputParams PeopleInputParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     const ConfigReader r(config, "tracking");
     PeopleInputParams p;
@@ -44,9 +63,10 @@ PeopleInput::PeopleInput(const PeopleInputParams& params, std::uint64_t seed)
     : params_(params), tracker_(params.tracker), detector_(params.detector), rng_(seed) {}
 
 void PeopleInput::detect(double t, const mrpt::obs::CObservation3DRangeScan& frame,
-                         const FlatPose& robot, const mapping::ExplorationMap& map) {
+                         const FlatPose& robot, const mapping::ExplorationMap& map,
+                         const Eigen::Vector3d& bodySize) {
     const std::vector<perception::PersonMeasurement> found = detector_.detect(frame, robot, map);
-    tracker_.update(t, found);
+    tracker_.update(t, found, seenEmptyIn({&frame, robot}, bodySize));
     forecasts_ = tracker_.forecasts();
 }
 
@@ -74,7 +94,8 @@ bool PeopleInput::visible(const world::RayCaster& scene, const FlatPose& sensor,
 
 void PeopleInput::observe(double t, const std::vector<world::PersonState>& truth,
                           const world::RayCaster& scene, const FlatPose& sensor,
-                          const sim::CameraParams& camera, const Eigen::Vector3d& bodySize) {
+                          const sim::CameraParams& camera, const Eigen::Vector3d& bodySize,
+                          const DepthView& view) {
     std::vector<perception::PersonMeasurement> seen;
     const bool sensed = params_.source == "sensed";
     const double sigma = sensed ? params_.sensedNoiseSigma : 0.0;
@@ -92,7 +113,7 @@ void PeopleInput::observe(double t, const std::vector<world::PersonState>& truth
         m.covariance = Eigen::Matrix2d::Identity() * r * r;
         seen.push_back(m);
     }
-    tracker_.update(t, seen);
+    tracker_.update(t, seen, seenEmptyIn(view, bodySize));
     forecasts_ = tracker_.forecasts();
 }
 

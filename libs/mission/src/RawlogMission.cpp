@@ -23,6 +23,7 @@
 #include "daep/eval/Statistics.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
+#include "daep/mission/PeopleInput.h"
 #include "daep/perception/PeopleDetector.h"
 #include "daep/perception/PeopleTracker.h"
 #include "daep/planning/Planner.h"
@@ -148,6 +149,7 @@ struct RawlogMission::Impl {
           scene(outputs, outputDir, logStream),
           detector(loadDetectorParams(config.config())),
           tracker(loadTrackerParams(config.config())),
+          bodySize(loadPeopleParams(config.config()).bodySize),
           peopleCsv(recorder.path("people.csv")) {
         if (!reader.next(frame))
             throw InputError(
@@ -185,7 +187,8 @@ struct RawlogMission::Impl {
      */
     void handleFrame() {
         t = frame.stamp - firstStamp;
-        tracker.update(t, detector.detect(*frame.depth, frame.robot, *map));
+        tracker.update(t, detector.detect(*frame.depth, frame.robot, *map),
+                       seenEmptyIn({frame.depth.get(), frame.robot}, bodySize));
         peopleCsv.write(t, tracker.forecasts());
         map->insertObservation(*frame.depth, frame.robot);
         ++frameCount;
@@ -314,6 +317,7 @@ struct RawlogMission::Impl {
     SceneExporter scene;
     perception::PeopleDetector detector;
     perception::PeopleTracker tracker;
+    Eigen::Vector3d bodySize;  ///< of the people the detector looks for
     PeopleCsv peopleCsv;
     RawlogFrame frame;
     Aabb box;

@@ -46,6 +46,7 @@ void PeopleTracker::updateOrStart(double time, int id, const PersonMeasurement& 
     if (Track* t = findById(id)) {
         t->filter.update(time, m.position, m.covariance);
         t->lastSeen = time;
+        t->missesInView = 0;
         ++t->hits;
         return;
     }
@@ -86,6 +87,7 @@ void PeopleTracker::associateAnonymous(double time,
         const PersonMeasurement& m = anonymous[std::size_t(c)];
         t.filter.update(time, m.position, m.covariance);
         t.lastSeen = time;
+        t.missesInView = 0;
         ++t.hits;
         used[std::size_t(c)] = true;
     }
@@ -94,7 +96,8 @@ void PeopleTracker::associateAnonymous(double time,
             startAnonymous(time, anonymous[c]);
 }
 
-void PeopleTracker::update(double time, const std::vector<PersonMeasurement>& measurements) {
+void PeopleTracker::update(double time, const std::vector<PersonMeasurement>& measurements,
+                           const EmptyTest& seenEmpty) {
     std::vector<PersonMeasurement> anonymous;
     for (const PersonMeasurement& m : measurements) {
         if (m.id >= 0)
@@ -104,7 +107,20 @@ void PeopleTracker::update(double time, const std::vector<PersonMeasurement>& me
     }
     if (!anonymous.empty())
         associateAnonymous(time, anonymous);
+    if (seenEmpty)
+        countMisses(time, seenEmpty);
     dropStale(time);
+}
+
+void PeopleTracker::countMisses(double time, const EmptyTest& seenEmpty) {
+    for (Track& t : tracks_)
+        if (confirmed(t) && t.lastSeen < time)
+            t.missesInView = seenEmpty(t.filter.predict(time).mean) ? t.missesInView + 1 : 0;
+    tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
+                                 [&](const Track& t) {
+                                     return t.missesInView >= params_.dropAfterMissesInView;
+                                 }),
+                  tracks_.end());
 }
 
 void PeopleTracker::dropStale(double time) {

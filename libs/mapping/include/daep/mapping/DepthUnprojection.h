@@ -25,6 +25,15 @@ SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
  * same points and order as CObservation3DRangeScan::unprojectInto with the sensor pose and the
  * robot pose applied (X forward, Y left, Z up), without copying the observation.
  */
+/**
+ * Whether the frame sees past a world point: the point projects into the image and its pixel
+ * returns more than `margin` beyond the point's depth, or returns nothing while the point
+ * lies within the sensor's maxRange. False behind the camera, outside the image, or where a
+ * return lies in front of the point (it may be hidden there).
+ */
+bool seesPast(const mrpt::obs::CObservation3DRangeScan& obs, const SensorFrame& frame,
+              const Eigen::Vector3f& point, float margin);
+
 std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3DRangeScan& obs,
                                                  const FlatPose& robot);
 

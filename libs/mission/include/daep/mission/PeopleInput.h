@@ -45,17 +45,33 @@ struct PeopleInputParams {
  * chosen source go into one Kalman track per person (kept across frames), and forecasts()
  * gives the tracks' closed-form predictions.
  */
+/** A depth frame and the robot pose it was taken from. */
+struct DepthView {
+    const mrpt::obs::CObservation3DRangeScan* frame = nullptr;
+    FlatPose robot;
+};
+
+/**
+ * The tracker's empty-place test for a frame: nobody stands at xy when the frame sees past
+ * the middle of a body there, across its width (a person a little off still blocks one of
+ * the three rays). Empty without a frame. The frame must outlive the test.
+ */
+perception::PeopleTracker::EmptyTest seenEmptyIn(const DepthView& view,
+                                                 const Eigen::Vector3d& bodySize);
+
 class PeopleInput {
 public:
     PeopleInput(const PeopleInputParams& params, std::uint64_t seed);
 
     /**
      * With people_source = ground_truth or sensed: one frame at time t, the people measured
-     * from the simulator's truth as seen by the camera at `sensor` (x forward, z up).
+     * from the simulator's truth as seen by the camera at `sensor` (x forward, z up). With a
+     * depth view, tracks whose predicted body it sees past are missed (PeopleTracker).
      */
     void observe(double t, const std::vector<world::PersonState>& truth,
                  const world::RayCaster& scene, const FlatPose& sensor,
-                 const sim::CameraParams& camera, const Eigen::Vector3d& bodySize);
+                 const sim::CameraParams& camera, const Eigen::Vector3d& bodySize,
+                 const DepthView& view = {});
 
     bool detects() const { return params_.source == "detected"; }
     /** Whether people are known only where the camera looks (sensed or detected). */
@@ -65,7 +81,7 @@ public:
      * before the frame goes into the map (the detector looks for what the map contradicts).
      */
     void detect(double t, const mrpt::obs::CObservation3DRangeScan& frame, const FlatPose& robot,
-                const mapping::ExplorationMap& map);
+                const mapping::ExplorationMap& map, const Eigen::Vector3d& bodySize);
 
     const std::vector<perception::PersonForecast>& forecasts() const { return forecasts_; }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "daep/perception/PersonMeasurement.h"
@@ -12,6 +13,11 @@ struct TrackerParams {
     PredictorParams predictor;
     /** A track not measured for this long (s) is dropped; until then it is predicted on. */
     double dropAfter = 5.0;
+    /**
+     * A confirmed track is dropped sooner when the sensor saw, this many updates in a row,
+     * that nobody stands where it predicts the person (see update's seenEmpty).
+     */
+    int dropAfterMissesInView = 3;
     /**
      * Gate for anonymous measurements: squared Mahalanobis distance of the innovation, chi-square
      * with 2 degrees of freedom (9.21 = 99 %). A measurement outside every track's gate starts a
@@ -35,7 +41,8 @@ struct TrackInfo {
 /**
  * The people the drone knows of: one constant-velocity Kalman track per person, kept across
  * updates (never rebuilt), predicted on with growing uncertainty while unseen, dropped after
- * `dropAfter` seconds without a measurement.
+ * `dropAfter` seconds without a measurement, or sooner when the sensor sees the predicted
+ * position empty.
  *
  * Measurements with a known id update the track of that id (created on first sight, confirmed
  * at once). Anonymous measurements (id = -1, e.g. from PeopleDetector) are associated with the
@@ -50,8 +57,17 @@ class PeopleTracker {
 public:
     explicit PeopleTracker(const TrackerParams& params);
 
-    /** Feeds the measurements of one instant (time non-decreasing across calls). */
-    void update(double time, const std::vector<PersonMeasurement>& measurements);
+    /** Whether the sensor saw, at this instant, that nobody stands at an x/y position. */
+    using EmptyTest = std::function<bool(const Eigen::Vector2d&)>;
+
+    /**
+     * Feeds the measurements of one instant (time non-decreasing across calls). With
+     * seenEmpty, a confirmed track left unmeasured whose predicted position the sensor saw
+     * empty counts a miss; dropAfterMissesInView misses in a row drop it. Tracks predicted
+     * where the sensor did not look live on up to dropAfter.
+     */
+    void update(double time, const std::vector<PersonMeasurement>& measurements,
+                const EmptyTest& seenEmpty = {});
 
     /** A closed-form forecast of every live confirmed track. */
     std::vector<PersonForecast> forecasts() const;
@@ -72,6 +88,7 @@ private:
         double lastSeen = 0.0;
         int hits = 1;
         bool anonymous = false;
+        int missesInView = 0;  ///< updates in a row that saw its predicted position empty
     };
 
     bool confirmed(const Track& t) const { return !t.anonymous || t.hits >= params_.confirmHits; }
@@ -80,6 +97,7 @@ private:
     void associateAnonymous(double time, const std::vector<PersonMeasurement>& anonymous);
     void startAnonymous(double time, const PersonMeasurement& m);
     void dropStale(double time);
+    void countMisses(double time, const EmptyTest& seenEmpty);
 
     TrackerParams params_;
     std::vector<Track> tracks_;
