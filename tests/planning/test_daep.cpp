@@ -180,6 +180,21 @@ TEST_F(DaepRoom, TheEscapeMovesAtOnceToSafetyPreferringWhatTheCameraSees) {
         }
 }
 
+TEST_F(DaepRoom, InsideAKeepOutAlreadyTheEscapeLeadsAwayFromThePerson) {
+    // Someone stands 1 m east of the drone, well inside the distance bodies keep: every move
+    // shares the gap at its start, so only where the moves lead can tell them apart.
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, root, 0.0);
+    std::vector<PersonForecast> people{walker(0, {3.0, 2.0}, {0, 0}, ctx.time)};
+    people[0].accelNoise = 1e-4;
+    ctx.people = &people;
+    const Plan plan = planner.escape(ctx);
+    ASSERT_EQ(plan.waypoints.size(), 1u) << plan.reason;
+    const Eigen::Vector2d away = (plan.waypoints[0].pose.position - root).head<2>();
+    EXPECT_GT(away.norm(), 0.3) << plan.reason;
+    EXPECT_LT(away.x(), -0.95 * away.norm()) << plan.reason;  // west, straight away
+}
+
 TEST_F(DaepRoom, KeepFlyingStopsWhenAPersonIsPredictedOnTheRestOfThePath) {
     DaepPlanner planner = makePlanner(2);
     PlanningContext ctx = contextFor(*map, root);
@@ -258,6 +273,66 @@ TEST_F(DaepRoom, FacingTravelFliesEveryLegLookingAheadThenTurnsToTheView) {
                                 (n.position - p.position).norm() / 0.5 +
                                 std::abs(wrapAngle(n.yaw - heading));
         EXPECT_NEAR(n.time - p.time, expected, 1e-9) << i;
+    }
+}
+
+/** A camera-fed planner that saw a person stand behind it, at (0.5, 2.5), then lost them. */
+DaepPlanner guardedAfterAWalkerBehind(const mapping::ExplorationMap& map, const Eigen::Vector3d& at,
+                                      const std::string& guard) {
+    DaepPlanner planner = makePlanner(3, "blind_guard", guard);
+    PlanningContext ctx = contextFor(map, at);  // facing +x: the walker is behind
+    ctx.peopleFromCamera = true;
+    for (int k = 0; k < 10; ++k) {
+        ctx.time = 2.0 + 0.25 * k;
+        const std::vector<PersonForecast> people{walker(0, {0.5, 2.5}, {0, 0}, ctx.time)};
+        ctx.people = &people;
+        planner.keepFlying(ctx, Plan{}, 0);
+    }
+    return planner;
+}
+
+TEST_F(DaepRoom, BeforeStoppingNearAWalkwayItHasNotWatchedItTurnsToLookAtIt) {
+    DaepPlanner planner = guardedAfterAWalkerBehind(*map, root, "auto");
+    PlanningContext ctx = contextFor(*map, root);  // t = 12: the walkway unseen for 10 s
+    ctx.peopleFromCamera = true;
+    const std::vector<PersonForecast> nobody;
+    ctx.people = &nobody;
+    for (int look = 0; look < planner.daepParams().blind.maxLooks; ++look) {
+        const Plan plan = planner.plan(ctx);
+        ASSERT_EQ(plan.waypoints.size(), 1u);
+        EXPECT_EQ(plan.reason.rfind("look:", 0), 0u) << plan.reason;
+        EXPECT_TRUE(plan.waypoints[0].pose.position.isApprox(root));
+        EXPECT_NEAR(plan.waypoints[0].pose.yaw, std::atan2(0.5, -1.5), 1e-9);
+        ctx.time += 0.1;  // still facing away: the walkway stays unseen
+    }
+    // After blind_max_looks looks in a row it goes anyway.
+    const Plan go = planner.plan(ctx);
+    ASSERT_FALSE(go.waypoints.empty());
+    EXPECT_EQ(go.reason.rfind("look:", 0), std::string::npos) << go.reason;
+    EXPECT_GT((go.waypoints[0].pose.position - root).norm(), 0.1);
+}
+
+TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
+    const std::vector<PersonForecast> nobody;
+    {
+        DaepPlanner planner = guardedAfterAWalkerBehind(*map, root, "auto");
+        PlanningContext ctx = contextFor(*map, root, std::atan2(0.5, -1.5));  // facing it now
+        ctx.peopleFromCamera = true;
+        ctx.people = &nobody;
+        planner.keepFlying(ctx, Plan{}, 0);
+        ctx.time += 0.2;
+        const Plan plan = planner.plan(ctx);
+        ASSERT_FALSE(plan.waypoints.empty());
+        EXPECT_EQ(plan.reason.rfind("look:", 0), std::string::npos) << plan.reason;
+    }
+    for (const char* guard : {"auto", "false"}) {
+        DaepPlanner planner = guardedAfterAWalkerBehind(*map, root, guard);
+        PlanningContext ctx = contextFor(*map, root);
+        ctx.peopleFromCamera = std::string(guard) == "false";  // auto needs camera people
+        ctx.people = &nobody;
+        const Plan plan = planner.plan(ctx);
+        ASSERT_FALSE(plan.waypoints.empty());
+        EXPECT_EQ(plan.reason.rfind("look:", 0), std::string::npos) << guard << plan.reason;
     }
 }
 

@@ -42,6 +42,22 @@ TEST(TimedSegment, TurnsOnTheSpotThenFliesStraight) {
     EXPECT_TRUE(s.positionAt(100.0).isApprox(Eigen::Vector3d(2, 0, 1)));
 }
 
+TEST(TimedSegment, TheRestOfAMoveKeepsItsTimingAndPath) {
+    const TimedSegment s = timedSegment({{0, 0, 1}, 0.0}, {{2, 0, 1}, M_PI / 2}, 10.0, 0.5, 1.0);
+    const TimedSegment turning = s.after(11.0);  // one second into the quarter turn
+    EXPECT_DOUBLE_EQ(turning.start, 11.0);
+    EXPECT_DOUBLE_EQ(turning.turnTime, M_PI / 2 - 1.0);
+    EXPECT_DOUBLE_EQ(turning.end(), s.end());
+    const TimedSegment flying = s.after(10.0 + M_PI / 2 + 2.0);  // half way along
+    EXPECT_DOUBLE_EQ(flying.turnTime, 0.0);
+    EXPECT_TRUE(flying.from.isApprox(Eigen::Vector3d(1, 0, 1)));
+    EXPECT_NEAR(flying.end(), s.end(), 1e-12);
+    for (const double t : {14.0, 15.0, 16.0})
+        EXPECT_TRUE(flying.positionAt(t).isApprox(s.positionAt(t)));
+    EXPECT_DOUBLE_EQ(s.after(0.0).start, s.start);  // clamped to the move
+    EXPECT_DOUBLE_EQ(s.after(99.0).start, s.end());
+}
+
 TEST(DynamicObstacles, AnEdgeThatCrossesAWalkerMidwayIsUnsafeThoughBothEndsAreClear) {
     // The drone flies 4 m along y in 8 s; a person walks along x and is at the crossing
     // point (0, 0) at t = 4 s, when the drone is there too.

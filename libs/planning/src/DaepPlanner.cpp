@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -38,6 +39,14 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.evasionHorizon = requirePositive(r, "evasion_horizon_s");
     p.waitTime = requirePositive(r, "wait_s");
     p.faceTravel = requireOneOf(r, "face_travel_direction", {"auto", "true", "false"});
+    p.blindGuard = requireOneOf(r, "blind_guard", {"auto", "true", "false"});
+    p.blind.walkSpeed = requireNonNegative(r, "blind_walk_speed");
+    p.blind.busyThreshold = requireInRange(r, "blind_busy_threshold", 0.0, 1.0);
+    p.blind.freshness = requireNonNegative(r, "blind_freshness_s");
+    p.blind.maxAge = requireNonNegative(r, "blind_max_age_s");
+    p.blind.stopTime = requireNonNegative(r, "blind_stop_s");
+    p.blind.range = requirePositive(r, "blind_watch_range");
+    p.blind.maxLooks = requireIntAtLeast(r, "blind_max_looks", 0);
     return p;
 }
 
@@ -65,8 +74,14 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
     safety.personSize = context.personSize;
     obstacles_ = DynamicObstacles(
         safety, context.people ? *context.people : std::vector<perception::PersonForecast>{});
-    if (dfm_.width() == 0)
+    if (dfm_.width() == 0) {
         dfm_ = FrequencyMap(context.explorationBox, params_.dfmCellSize);
+        watch_ = BlindWatch(dfm_, params_.blind);
+    }
+    guardingBlind_ =
+        params_.blindGuard == "true" || (params_.blindGuard == "auto" && context.peopleFromCamera);
+    if (guardingBlind_)
+        watch_.see(context.pose, gainEvaluator().params().hfov, context.time);
     if (context.time < lastObservation_ + kDfmPeriod)
         return;
     lastObservation_ = context.time;
@@ -204,6 +219,49 @@ Plan DaepPlanner::wait(const PlanningContext& context, const std::string& why) c
     return plan;
 }
 
+std::optional<BlindThreat> DaepPlanner::blindThreat(const PlanningContext& context,
+                                                    const Eigen::Vector3d& stop,
+                                                    double until) const {
+    if (!guardingBlind_)
+        return std::nullopt;
+    const SafetyParams& s = obstacles_.params();
+    const double keepOut =
+        0.5 * s.personSize.head<2>().norm() + 0.5 * s.droneSize.head<2>().norm() + s.clearance;
+    const BlindThreat threat =
+        watch_.worstThreat(dfm_, stop.head<2>(), context.time, until, keepOut);
+    if (threat.excess <= 0.0)
+        return std::nullopt;
+    return threat;
+}
+
+bool DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
+    if (!guardingBlind_ || looks_ >= params_.blind.maxLooks) {
+        looks_ = 0;
+        return false;
+    }
+    const Waypoint& stop = plan.waypoints.front();
+    const std::optional<BlindThreat> threat =
+        blindThreat(context, stop.pose.position, stop.arrivalTime + params_.blind.stopTime);
+    const Eigen::Vector2d d =
+        (threat ? threat->cell : Eigen::Vector2d::Zero()) - context.pose.position.head<2>();
+    const FlatPose look{context.pose.position, std::atan2(d.y(), d.x())};
+    if (!threat || !moveSafe(context.pose, context.time, look)) {
+        looks_ = 0;
+        return false;
+    }
+    ++looks_;
+    std::ostringstream why;
+    why << "look: a person unseen could reach the next stop (by " << threat->excess
+        << " m) from the walkway at " << threat->cell.x() << ", " << threat->cell.y();
+    Plan out;
+    out.status = Plan::Status::Path;
+    out.waypoints.push_back({look, context.time + context.motion.travelTime(context.pose, look)});
+    out.tree = std::move(plan.tree);
+    out.reason = why.str();
+    plan = std::move(out);
+    return true;
+}
+
 Plan DaepPlanner::escape(const PlanningContext& context) {
     observePeople(context);
     return bestEscape(context);
@@ -211,24 +269,42 @@ Plan DaepPlanner::escape(const PlanningContext& context) {
 
 namespace {
 
+/** Clearance (m) an unsafe escape may give up to stay off walkways unseen people may use. */
+constexpr double kWalkwayMargin = 0.2;
+
 /** One candidate escape: where to, how much clearance it keeps, and whether it is in view. */
 struct Escape {
     FlatPose goal;
     double gap = -std::numeric_limits<double>::infinity();
+    /**
+     * The gap once the move is under way: from where the drone starts every escape shares
+     * the gap, so unsafe escapes are told apart by where they lead.
+     */
+    double gapUnderWay = -std::numeric_limits<double>::infinity();
     double distance = 0.0;
     bool seen = false;
+    bool offWalkways = true;  ///< no unseen person could walk in while the drone is there
 
     /**
-     * Any safe escape beats an unsafe one. Among safe ones, one the camera looks along beats a
-     * blind one (people not tracked may stand there), then the shorter, then the clearer;
-     * among unsafe ones, the clearer.
+     * Any safe escape beats an unsafe one. Among safe ones, one no unseen walker threatens
+     * beats one they do, then one the camera looks along beats a blind one (people not
+     * tracked may stand there), then the shorter, then the clearer; among unsafe ones, the
+     * clearer under way, off walkways unless that costs more than kWalkwayMargin.
      */
     bool betterThan(const Escape& o) const {
         const bool safe = gap > 0.0, otherSafe = o.gap > 0.0;
         if (safe != otherSafe)
             return safe;
-        if (!safe)
-            return gap > o.gap + 1e-9;
+        if (!safe) {
+            // An unseen walker is as real as a tracked one: off the walkways is worth a
+            // little of the clearance from the people tracked.
+            if (offWalkways != o.offWalkways)
+                return offWalkways ? gapUnderWay > o.gapUnderWay - kWalkwayMargin
+                                   : gapUnderWay > o.gapUnderWay + kWalkwayMargin;
+            return gapUnderWay > o.gapUnderWay + 1e-9;
+        }
+        if (offWalkways != o.offWalkways)
+            return offWalkways;
         if (seen != o.seen)
             return seen;
         if (std::abs(distance - o.distance) > 1e-9)
@@ -268,7 +344,12 @@ Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
                 hover.from = hover.to = to;
                 hover.start = move.end();
                 hover.turnTime = std::max(0.0, context.time + params_.evasionHorizon - move.end());
-                e.gap = std::min(obstacles_.clearance(move), obstacles_.clearance(hover));
+                const double hoverGap = obstacles_.clearance(hover);
+                e.gap = std::min(obstacles_.clearance(move), hoverGap);
+                e.gapUnderWay =
+                    std::min(obstacles_.clearance(move.after(move.start + params_.safety.timeStep)),
+                             hoverGap);
+                e.offWalkways = !blindThreat(context, to, hover.end()).has_value();
                 if (!any || e.betterThan(best))
                     best = e;
                 any = true;
@@ -297,8 +378,10 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
     if (plan.status == Plan::Status::Finished)
         return plan;
     plan = cutAtFirstUnsafe(context, facingTravel(context, std::move(plan)));
-    if (!plan.waypoints.empty())
+    if (!plan.waypoints.empty()) {
+        lookBeforeStop(context, plan);
         return plan;
+    }
     if (!hoverSafe)
         return bestEscape(context);
     return wait(context, plan.reason);

@@ -14,6 +14,20 @@ Eigen::Vector3d TimedSegment::positionAt(double t) const {
     return from + (to - from) * std::min(1.0, flying / flyTime);
 }
 
+TimedSegment TimedSegment::after(double t) const {
+    TimedSegment rest = *this;
+    const double delay = std::clamp(t - start, 0.0, turnTime + flyTime);
+    rest.start = start + delay;
+    if (delay <= turnTime) {
+        rest.turnTime = turnTime - delay;
+        return rest;
+    }
+    rest.from = positionAt(rest.start);
+    rest.turnTime = 0.0;
+    rest.flyTime = flyTime - (delay - turnTime);
+    return rest;
+}
+
 TimedSegment timedSegment(const FlatPose& a, const FlatPose& b, double start, double speed,
                           double yawRate) {
     TimedSegment s;

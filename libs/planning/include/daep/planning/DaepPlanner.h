@@ -1,9 +1,11 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "daep/planning/AepPlanner.h"
+#include "daep/planning/BlindWatch.h"
 #include "daep/planning/DynamicObstacles.h"
 #include "daep/planning/FrequencyMap.h"
 
@@ -30,6 +32,13 @@ struct DaepParams {
      * people come from the camera).
      */
     std::string faceTravel = "auto";
+    /**
+     * Before a stop where a person the camera has not seen could walk in (BlindWatch), turn
+     * to look at where they would come from: always, never, or auto (when the people come
+     * from the camera; with ground truth the planner sees everyone).
+     */
+    std::string blindGuard = "auto";
+    BlindWatchParams blind;
 
     static DaepParams fromConfig(const mrpt::config::CConfigFileBase& config);
 };
@@ -50,6 +59,9 @@ struct DaepParams {
  * - In flight the rest of the path is re-checked against the latest predictions at every
  *   frame; when a person is predicted to reach the drone the mission stops it and plans again,
  *   and if even hovering is unsafe the planner picks the escape move with the most clearance.
+ * - With people from the camera (blindGuard), a stop a person never seen could walk into
+ *   along a walkway the camera has not watched lately (BlindWatch) is preceded by a turn to
+ *   look at that walkway.
  */
 class DaepPlanner : public AepPlanner {
 public:
@@ -67,8 +79,9 @@ public:
 
     /**
      * The escape when even hovering is unsafe: among short straight moves in known free space
-     * (no turn, so the drone moves at once), the one whose move and the hover after it, up to
-     * evasion_horizon_s, keep the most clearance from the predicted bodies.
+     * (no turn, so the drone moves at once), a safe one (the move and the hover after it, up
+     * to evasion_horizon_s, clear of the predicted bodies) off unwatched walkways and in view
+     * if there is one, else the one that keeps the most clearance once under way.
      */
     Plan escape(const PlanningContext& context);
 
@@ -94,9 +107,17 @@ private:
     /** With faceTravel, every waypoint reached heading along its leg, then turned to its yaw. */
     Plan facingTravel(const PlanningContext& context, Plan plan) const;
     Plan wait(const PlanningContext& context, const std::string& why) const;
+    /** The worst blind threat to a drone staying at `stop` until `until`, if guarding. */
+    std::optional<BlindThreat> blindThreat(const PlanningContext& context,
+                                           const Eigen::Vector3d& stop, double until) const;
+    /** A turn to look at the worst blind threat to the plan's first stop, if it has one. */
+    bool lookBeforeStop(const PlanningContext& context, Plan& plan);
 
     DaepParams params_;
-    bool facingTravel_ = false;  ///< faceTravel decided for the current context
+    bool facingTravel_ = false;   ///< faceTravel decided for the current context
+    bool guardingBlind_ = false;  ///< blindGuard decided for the current context
+    BlindWatch watch_;
+    int looks_ = 0;  ///< blind looks in a row
     DynamicObstacles obstacles_;
     FrequencyMap dfm_;
     double lastObservation_ = -1e300;

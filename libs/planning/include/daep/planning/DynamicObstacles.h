@@ -29,6 +29,8 @@ struct TimedSegment {
     double flyTime = 0.0;   ///< s spent flying from `from` to `to`
     double end() const { return start + turnTime + flyTime; }
     Eigen::Vector3d positionAt(double t) const;
+    /** The rest of the move from time t on (clamped to the move). */
+    TimedSegment after(double t) const;
 };
 
 /** The segment a drone with `motion`-like limits flies from pose a to pose b from `start`. */

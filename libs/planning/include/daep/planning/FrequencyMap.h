@@ -23,6 +23,8 @@ public:
     double value(const Eigen::Vector2d& xy) const;
 
     double cellSize() const { return cellSize_; }
+    /** The grid's lower x/y corner. */
+    const Eigen::Vector2d& origin() const { return origin_; }
     int width() const { return nx_; }
     int height() const { return ny_; }
     long maxCount() const { return maxCount_; }
