@@ -10,6 +10,9 @@
 
 namespace daep::test {
 
+/** The small world most end-to-end tests fly: a room with one walker. */
+inline const std::string kTinyIni = std::string(DAEP_E2E_DATA) + "/tiny_room.ini";
+
 struct AppResult {
     int exitCode = -1;
     std::string out;

@@ -8,12 +8,11 @@
 namespace fs = std::filesystem;
 using daep::test::freshDir;
 using daep::test::jsonNumber;
+using daep::test::kTinyIni;
 using daep::test::readText;
 using daep::test::runExplore;
 
 namespace {
-
-const std::string kTinyIni = std::string(DAEP_E2E_DATA) + "/tiny_room.ini";
 
 struct DaepRun {
     std::string source;

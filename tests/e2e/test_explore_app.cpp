@@ -9,12 +9,11 @@
 namespace fs = std::filesystem;
 using daep::test::freshDir;
 using daep::test::jsonNumber;
+using daep::test::kTinyIni;
 using daep::test::readText;
 using daep::test::runExplore;
 
 namespace {
-
-const std::string kTinyIni = std::string(DAEP_E2E_DATA) + "/tiny_room.ini";
 
 /** summary.json without its wall_time_s line, which is the only non-deterministic field. */
 std::string deterministicSummary(const fs::path& dir) {

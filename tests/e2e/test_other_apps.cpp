@@ -14,7 +14,7 @@ using daep::test::runExplore;
 
 TEST(ReplayApp, ReplayingARunWithItsOwnSettingsGivesItsCoverage) {
     const auto dir = freshDir("replay");
-    const std::string ini = std::string(DAEP_E2E_DATA) + "/tiny_room.ini";
+    const std::string& ini = daep::test::kTinyIni;
     const auto run = runExplore(
         ini + " --quiet --set experiment.max_time_s=30 --out " + (dir / "run").string(), dir);
     ASSERT_EQ(run.exitCode, 0) << run.err;

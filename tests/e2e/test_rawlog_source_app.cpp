@@ -12,10 +12,10 @@ namespace {
 
 using daep::test::freshDir;
 using daep::test::jsonNumber;
+using daep::test::kTinyIni;
 using daep::test::readText;
 using daep::test::runExplore;
 
-const std::string kTinyIni = std::string(DAEP_E2E_DATA) + "/tiny_room.ini";
 const std::string kDataset = std::string(DAEP_SOURCE_DIR) + "/datasets/tiny_room_dynamic.rawlog";
 
 int lineCount(const std::filesystem::path& p) {

@@ -224,30 +224,28 @@ std::optional<BlindThreat> DaepPlanner::blindThreat(const PlanningContext& conte
                                                     double until) const {
     if (!guardingBlind_)
         return std::nullopt;
-    const SafetyParams& s = obstacles_.params();
-    const double keepOut =
-        0.5 * s.personSize.head<2>().norm() + 0.5 * s.droneSize.head<2>().norm() + s.clearance;
     const BlindThreat threat =
-        watch_.worstThreat(dfm_, stop.head<2>(), context.time, until, keepOut);
+        watch_.worstThreat(dfm_, stop.head<2>(), context.time, until, obstacles_.bodyKeepOut());
     if (threat.excess <= 0.0)
         return std::nullopt;
     return threat;
 }
 
-bool DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
-    if (!guardingBlind_ || looks_ >= params_.blind.maxLooks) {
-        looks_ = 0;
-        return false;
-    }
+void DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
     const Waypoint& stop = plan.waypoints.front();
     const std::optional<BlindThreat> threat =
-        blindThreat(context, stop.pose.position, stop.arrivalTime + params_.blind.stopTime);
-    const Eigen::Vector2d d =
-        (threat ? threat->cell : Eigen::Vector2d::Zero()) - context.pose.position.head<2>();
-    const FlatPose look{context.pose.position, std::atan2(d.y(), d.x())};
-    if (!threat || !moveSafe(context.pose, context.time, look)) {
+        looks_ < params_.blind.maxLooks
+            ? blindThreat(context, stop.pose.position, stop.arrivalTime + params_.blind.stopTime)
+            : std::nullopt;
+    if (!threat) {
         looks_ = 0;
-        return false;
+        return;
+    }
+    const Eigen::Vector2d d = threat->cell - context.pose.position.head<2>();
+    const FlatPose look{context.pose.position, std::atan2(d.y(), d.x())};
+    if (!moveSafe(context.pose, context.time, look)) {
+        looks_ = 0;
+        return;
     }
     ++looks_;
     std::ostringstream why;
@@ -259,7 +257,6 @@ bool DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
     out.tree = std::move(plan.tree);
     out.reason = why.str();
     plan = std::move(out);
-    return true;
 }
 
 Plan DaepPlanner::escape(const PlanningContext& context) {

@@ -66,7 +66,7 @@ double DynamicObstacles::keepOutRadius(const perception::PersonForecast& person,
 double DynamicObstacles::keepOutRadius(const perception::PositionPrediction& at,
                                        double clearanceScale) const {
     const double sigma = largestSigma(at.covariance);
-    return bodyRadius_ + clearanceScale * params_.clearance +
+    return bodyKeepOut(clearanceScale) +
            std::min(params_.maxInflation, params_.sigmaInflation * sigma);
 }
 

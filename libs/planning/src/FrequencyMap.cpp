@@ -6,26 +6,31 @@
 
 namespace daep::planning {
 
-FrequencyMap::FrequencyMap(const Aabb& box, double cellSize)
-    : origin_(box.min.head<2>()), cellSize_(cellSize) {
+XyGrid::XyGrid(const Aabb& box, double cellSize) : origin(box.min.head<2>()), cellSize(cellSize) {
     if (!(cellSize > 0.0))
         throw std::invalid_argument("FrequencyMap: cell size must be > 0");
-    nx_ = std::max(1, static_cast<int>(std::ceil(box.size().x() / cellSize - 1e-9)));
-    ny_ = std::max(1, static_cast<int>(std::ceil(box.size().y() / cellSize - 1e-9)));
-    counts_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), 0);
+    nx = std::max(1, static_cast<int>(std::ceil(box.size().x() / cellSize - 1e-9)));
+    ny = std::max(1, static_cast<int>(std::ceil(box.size().y() / cellSize - 1e-9)));
 }
 
-int FrequencyMap::cellIndex(const Eigen::Vector2d& xy) const {
-    const Eigen::Vector2d local = (xy - origin_) / cellSize_;
+int XyGrid::index(const Eigen::Vector2d& xy) const {
+    const Eigen::Vector2d local = (xy - origin) / cellSize;
     const int ix = static_cast<int>(std::floor(local.x()));
     const int iy = static_cast<int>(std::floor(local.y()));
-    if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_)
+    if (ix < 0 || iy < 0 || ix >= nx || iy >= ny)
         return -1;
-    return iy * nx_ + ix;
+    return iy * nx + ix;
 }
 
+Eigen::Vector2d XyGrid::center(int ix, int iy) const {
+    return origin + cellSize * Eigen::Vector2d(ix + 0.5, iy + 0.5);
+}
+
+FrequencyMap::FrequencyMap(const Aabb& box, double cellSize)
+    : grid_(box, cellSize), counts_(grid_.size(), 0) {}
+
 void FrequencyMap::add(const Eigen::Vector2d& xy) {
-    const int i = cellIndex(xy);
+    const int i = grid_.index(xy);
     if (i < 0)
         return;
     long& c = counts_[static_cast<std::size_t>(i)];
@@ -33,7 +38,7 @@ void FrequencyMap::add(const Eigen::Vector2d& xy) {
 }
 
 double FrequencyMap::value(const Eigen::Vector2d& xy) const {
-    const int i = cellIndex(xy);
+    const int i = grid_.index(xy);
     if (i < 0 || maxCount_ == 0)
         return 0.0;
     return static_cast<double>(counts_[static_cast<std::size_t>(i)]) /

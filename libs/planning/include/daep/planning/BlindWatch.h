@@ -50,12 +50,8 @@ public:
     const BlindWatchParams& params() const { return params_; }
 
 private:
-    Eigen::Vector2d center(int ix, int iy) const;
     BlindWatchParams params_;
-    Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
-    double cellSize_ = 1.0;
-    int nx_ = 0;
-    int ny_ = 0;
+    XyGrid grid_;  ///< the frequency map's
     std::vector<double> lastSeen_;
 };
 

@@ -110,8 +110,8 @@ private:
     /** The worst blind threat to a drone staying at `stop` until `until`, if guarding. */
     std::optional<BlindThreat> blindThreat(const PlanningContext& context,
                                            const Eigen::Vector3d& stop, double until) const;
-    /** A turn to look at the worst blind threat to the plan's first stop, if it has one. */
-    bool lookBeforeStop(const PlanningContext& context, Plan& plan);
+    /** Replaces the plan by a turn to look at the worst blind threat to its first stop, if any. */
+    void lookBeforeStop(const PlanningContext& context, Plan& plan);
 
     DaepParams params_;
     bool facingTravel_ = false;   ///< faceTravel decided for the current context

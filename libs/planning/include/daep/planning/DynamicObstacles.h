@@ -70,6 +70,10 @@ public:
     /** Predicted bodies (mean positions, no inflation) at time t, within the horizon. */
     std::vector<BodyOccluder> bodiesAt(double t) const;
 
+    /** Centre distance kept from a body known exactly: body + drone + clearance. */
+    double bodyKeepOut(double clearanceScale = 1.0) const {
+        return bodyRadius_ + clearanceScale * params_.clearance;
+    }
     /** Required centre distance for person i at time t (body + drone + clearance + k sigma). */
     double keepOutRadius(const perception::PersonForecast& person, double t,
                          double clearanceScale) const;

@@ -1,11 +1,28 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 #include "daep/common/Types.h"
 
 namespace daep::planning {
+
+/** Square cells over a box's x/y, numbered row by row from its lower corner. */
+struct XyGrid {
+    XyGrid() = default;
+    XyGrid(const Aabb& box, double cellSize);
+
+    /** The cell holding xy, or -1 outside the grid. */
+    int index(const Eigen::Vector2d& xy) const;
+    Eigen::Vector2d center(int ix, int iy) const;
+    std::size_t size() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny); }
+
+    Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+    double cellSize = 1.0;
+    int nx = 0;
+    int ny = 0;
+};
 
 /**
  * DAEP's Dynamic Frequency Map: a grid over the exploration box's x/y (square cells) counting
@@ -22,21 +39,17 @@ public:
 
     double value(const Eigen::Vector2d& xy) const;
 
-    double cellSize() const { return cellSize_; }
-    /** The grid's lower x/y corner. */
-    const Eigen::Vector2d& origin() const { return origin_; }
-    int width() const { return nx_; }
-    int height() const { return ny_; }
+    const XyGrid& grid() const { return grid_; }
+    double cellSize() const { return grid_.cellSize; }
+    int width() const { return grid_.nx; }
+    int height() const { return grid_.ny; }
     long maxCount() const { return maxCount_; }
-    long count(int ix, int iy) const { return counts_[static_cast<std::size_t>(iy * nx_ + ix)]; }
+    long count(int ix, int iy) const {
+        return counts_[static_cast<std::size_t>(iy * grid_.nx + ix)];
+    }
 
 private:
-    int cellIndex(const Eigen::Vector2d& xy) const;  ///< -1 outside
-
-    Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
-    double cellSize_ = 1.0;
-    int nx_ = 0;
-    int ny_ = 0;
+    XyGrid grid_;
     std::vector<long> counts_;
     long maxCount_ = 0;
 };
