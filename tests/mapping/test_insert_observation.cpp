@@ -150,6 +150,28 @@ TEST(InsertObservation, FarWallOnlyClearsUpToMaxRange) {
     EXPECT_TRUE(map.isUnknown({8.1, 0.0, 0.0}));
 }
 
+TEST(InsertObservation, ReturnsOnAPersonClearUpToThemAndMarkNothing) {
+    Aabb box;
+    box.min = {-1, -8, -4};
+    box.max = {10, 8, 4};
+    // A wall 3 m ahead; a person stands in it around y = 0 (their footprint reaches it).
+    const auto wall = makeFrame(80, 60, 3.0, mrpt::poses::CPose3D());
+    PersonFootprint person;
+    person.centre = {3.2f, 0.0f};
+    person.radius = 0.6f;
+    person.top = 1.0f;
+    ExplorationMap map(MapParams{}, box);
+    map.insertObservation(wall, FlatPose{}, {person});
+    EXPECT_FALSE(map.isOccupied({3.0, 0.0, 0.0}));  // the person is not a wall
+    EXPECT_TRUE(map.isFree({2.5, 0.0, 0.0}));       // the ray to them is cleared
+    EXPECT_TRUE(map.isOccupied({3.0, 1.5, 0.0}));   // beside them the wall is a wall
+    EXPECT_TRUE(map.isOccupied({3.0, 0.0, 1.5}));   // and above their head
+    // Without people the same frame maps the wall everywhere.
+    ExplorationMap plain(MapParams{}, box);
+    plain.insertObservation(wall, FlatPose{}, {});
+    EXPECT_TRUE(plain.isOccupied({3.0, 0.0, 0.0}));
+}
+
 TEST(InsertObservation, NoReturnPixelsClearTheirRaysOnlyWhenAskedTo) {
     Aabb box;
     box.min = {-1, -8, -4};

@@ -56,6 +56,33 @@ TEST_F(FreeBlockMap, IsBoxFree) {
     EXPECT_TRUE(map_.isBoxFree({1.7, 1.1, 0.5}, {0.29, 0.01, 0.01}));
 }
 
+TEST_F(FreeBlockMap, GrazedSurfaceBesideAnOccupiedCellBlocksTheCapsule) {
+    // A thin surface reaching a few cm into cell A from the occupied cell B beside it: rays
+    // ended in A once, then rays through A's free part cleared it.
+    const Eigen::Vector3i a(10, 4, 2), b(10, 5, 2);  // A: y in [0.8, 1.0], B: [1.0, 1.2]
+    for (int i = 0; i < 3; ++i)
+        test::occupy(map_, cellCentre(b, kRes));
+    test::occupy(map_, cellCentre(a, kRes));
+    for (int i = 0; i < 6; ++i)
+        test::freeRow(map_, {0, a.y(), a.z()});
+    ASSERT_TRUE(map_.isFree(cellCentre(a, kRes)));
+    ASSERT_TRUE(map_.isOccupied(cellCentre(b, kRes)));
+    // The capsule comes within 0.25 m of A and 0.45 m of B.
+    const Eigen::Vector3d from(1.9, 0.55, 0.5), to(2.3, 0.55, 0.5);
+    EXPECT_FALSE(map_.isSegmentFree(from, to, 0.3));
+    EXPECT_FALSE(map_.isSegmentFreeOrUnknown(from, to, 0.3));
+    // Beside an occupied cell, a free cell no ray ended in is free.
+    const Eigen::Vector3d left(-1.4, 0, 0);  // the same capsule over cells x 3 and 4
+    for (int i = 0; i < 3; ++i)
+        test::occupy(map_, cellCentre({3, 5, 2}, kRes));
+    EXPECT_TRUE(map_.isSegmentFree(from + left, to + left, 0.3));
+    // Once B is seen through (a person who walked on), A is free space again.
+    for (int i = 0; i < 12; ++i)
+        test::freeRow(map_, {0, b.y(), b.z()});
+    ASSERT_TRUE(map_.isFree(cellCentre(b, kRes)));
+    EXPECT_TRUE(map_.isSegmentFree(from, to, 0.3));
+}
+
 TEST_F(FreeBlockMap, SegmentAgainstHandPlacedObstacle) {
     const Eigen::Vector3d a(0.5, 1.0, 0.5), b(3.5, 1.0, 0.5);
     EXPECT_TRUE(map_.isSegmentFree(a, b, 0.3));

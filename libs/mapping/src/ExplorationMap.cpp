@@ -74,6 +74,7 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
         throw InputError(err.str());
     }
     cells.assign(std::size_t(total), std::uint8_t(CellState::Unknown));
+    everHit.assign(std::size_t(total), 0);
 }
 
 bool ExplorationMap::Impl::axisKeyOf(double c, octomap::key_type& k) const {
@@ -106,6 +107,11 @@ std::size_t ExplorationMap::Impl::integrate(const octomap::point3d& origin, doub
     freeKeys.clear();
     occupiedKeys.clear();
     tree.computeDiscreteUpdate(cloud, origin, freeKeys, occupiedKeys, maxRange);
+    for (const octomap::OcTreeKey& key : personKeys) {
+        if (tree.computeRayKeys(origin, tree.keyToCoord(key), ray))
+            freeKeys.insert(ray.begin(), ray.end());
+    }
+    personKeys.clear();
 
     std::size_t newlyKnown = 0;
     const auto apply = [&](const octomap::OcTreeKey& key, bool hit) {
@@ -122,6 +128,7 @@ std::size_t ExplorationMap::Impl::integrate(const octomap::point3d& origin, doub
             ++newlyKnown;
         }
         cell = std::uint8_t(tree.isNodeOccupied(node) ? CellState::Occupied : CellState::Free);
+        everHit[std::size_t(i)] |= std::uint8_t(hit);
     };
     for (const auto& key : freeKeys) {
         if (occupiedKeys.count(key) == 0) {

@@ -67,7 +67,25 @@ std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3D
  */
 void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan& obs,
                                        const FlatPose& robot) {
+    insertObservation(obs, robot, {});
+}
+
+namespace {
+
+bool onAPerson(const Eigen::Vector3f& p, const std::vector<PersonFootprint>& people) {
+    for (const PersonFootprint& f : people)
+        if (p.z() <= f.top && (p.head<2>() - f.centre).squaredNorm() <= f.radius * f.radius)
+            return true;
+    return false;
+}
+
+}  // namespace
+
+void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan& obs,
+                                       const FlatPose& robot,
+                                       const std::vector<PersonFootprint>& people) {
     Impl& m = *impl_;
+    const float maxRange2 = float(params_.maxRange * params_.maxRange);
     const SensorFrame frame = sensorFrameInWorld(obs, robot);
     m.cloud.clear();
     m.rowAbove.assign(std::size_t(obs.rangeImage.cols()), kNoKey);
@@ -82,6 +100,13 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
         octomap::OcTreeKey key;
         if (!m.tree.coordToKeyChecked(octomap::point3d(p.x(), p.y(), p.z()), key)) {
             previous = kNoKey;
+            return;
+        }
+        if (!people.empty() && (p - frame.origin).squaredNorm() <= maxRange2 &&
+            onAPerson(p, people)) {
+            m.personKeys.insert(key);
+            previous = kNoKey;
+            m.rowAbove[std::size_t(col)] = kNoKey;
             return;
         }
         const std::uint64_t packed = pack(key);

@@ -22,10 +22,14 @@ struct ExplorationMap::Impl {
     octomap::OcTreeKey gridMin;  ///< key of the grid's first cell on each axis
     std::array<int, 3> dims{};
     std::vector<std::uint8_t> cells;
+    /// Per dense cell, 1 once any frame ended a ray in it (see grazedSurface).
+    std::vector<std::uint8_t> everHit;
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
 
-    octomap::Pointcloud cloud;  ///< scratch buffers reused between insertions
+    octomap::Pointcloud cloud;   ///< scratch buffers reused between insertions
+    octomap::KeySet personKeys;  ///< cells of returns on people: cleared up to, not marked
+    octomap::KeyRay ray;
     octomap::KeySet freeKeys;
     octomap::KeySet occupiedKeys;
     std::vector<std::uint64_t> rowAbove;  ///< packed keys of the previous image row
@@ -74,6 +78,13 @@ struct ExplorationMap::Impl {
     }
 
     CellState treeState(const octomap::OcTreeKey& key) const;
+
+    /**
+     * A free cell that rays have ended in, beside an occupied one: the thin edge of a surface
+     * (a post's side a few cm into the cell) that rays grazing the cell's free part have
+     * cleared. Clearance checks treat it as occupied, or the drone could brush the surface.
+     */
+    bool grazedSurface(const octomap::OcTreeKey& key) const;
 
     bool keyInBox(const octomap::OcTreeKey& key) const;
 

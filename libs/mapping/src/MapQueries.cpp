@@ -140,7 +140,7 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
             }
             for (int x = std::max<int>(x0, lo[0]); x <= std::min<int>(x1, hi[0]); ++x) {
                 k[0] = octomap::key_type(x);
-                if (allowed(m.stateAt(k))) {
+                if (allowed(m.stateAt(k)) && !m.grazedSurface(k)) {
                     continue;
                 }
                 const Eigen::Vector3d cellLo(m.cellLow(k[0]), y0, z0);
@@ -151,6 +151,21 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
         }
     }
     return true;
+}
+
+bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key) const {
+    const std::int64_t i = gridIndex(key);
+    if (i < 0 || !everHit[std::size_t(i)] || cells[std::size_t(i)] != std::uint8_t(CellState::Free))
+        return false;
+    for (int axis = 0; axis < 3; ++axis) {
+        for (const int step : {-1, 1}) {
+            octomap::OcTreeKey n = key;
+            n[axis] = octomap::key_type(int(n[axis]) + step);
+            if (stateAt(n) == CellState::Occupied)
+                return true;
+        }
+    }
+    return false;
 }
 
 bool ExplorationMap::isSegmentFree(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

@@ -21,6 +21,16 @@ struct SensorFrame;
 
 enum class CellState : std::uint8_t { Unknown = 0, Free = 1, Occupied = 2 };
 
+/**
+ * Where a person stands, as a vertical cylinder from the floor: depth points inside it are
+ * the person, not the static world.
+ */
+struct PersonFootprint {
+    Eigen::Vector2f centre = Eigen::Vector2f::Zero();
+    float radius = 0.0f;
+    float top = 0.0f;  ///< world z of the cylinder's top
+};
+
 struct MapParams {
     double resolution = 0.2;
     double maxRange = 5.0;  ///< longer rays clear space up to this range only
@@ -61,6 +71,13 @@ public:
      * pose, and integrates it.
      */
     void insertObservation(const mrpt::obs::CObservation3DRangeScan& obs, const FlatPose& robot);
+    /**
+     * The same, but a return on one of `people` clears its ray up to the person and marks
+     * nothing occupied: people are not walls, and a person mapped as one would close a door
+     * long after they walked through it.
+     */
+    void insertObservation(const mrpt::obs::CObservation3DRangeScan& obs, const FlatPose& robot,
+                           const std::vector<PersonFootprint>& people);
 
     CellState state(const Eigen::Vector3d& p) const;
     bool isFree(const Eigen::Vector3d& p) const { return state(p) == CellState::Free; }
