@@ -321,7 +321,7 @@ bool AepPlanner::verifyFrontier(const mapping::ExplorationMap& map, int id) {
     return true;
 }
 
-void AepPlanner::growGlobal(const PlanningContext& context, const std::vector<int>& frontiers) {
+bool AepPlanner::growGlobal(const PlanningContext& context, const std::vector<int>& frontiers) {
     globalTree_ = true;
     resetTree(context);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -351,6 +351,16 @@ void AepPlanner::growGlobal(const PlanningContext& context, const std::vector<in
             reached = reached || cache_.entry(id).alive;
         }
     }
+    return reached;
+}
+
+bool AepPlanner::peopleBlockFrontiers(const PlanningContext& context) {
+    (void)context;
+    return false;
+}
+
+bool AepPlanner::globalTreeReachesFrontier(const PlanningContext& context) {
+    return growGlobal(context, cache_.liveIds());
 }
 
 Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
@@ -399,6 +409,12 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
             << cache_.size() << " frontiers, " << tree_.size() - 1 << " nodes";
         out.reason = why.str();
         return out;
+    }
+    if (peopleBlockFrontiers(context)) {
+        plan.status = Plan::Status::Path;
+        why << "global: people block the way to " << cache_.size() << " frontiers";
+        plan.reason = why.str();
+        return plan;
     }
     ++globalFailures_;
     if (globalFailures_ >= params_.globalPlannerCounter || cache_.size() == 0) {

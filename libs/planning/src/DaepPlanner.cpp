@@ -137,7 +137,7 @@ double DaepPlanner::moveTime(const FlatPose& a, const FlatPose& b) const {
 }
 
 bool DaepPlanner::moveSafe(const FlatPose& from, double start, const FlatPose& to) const {
-    if (obstacles_.empty())
+    if (obstacles_.empty() || ignoringPeople_)
         return true;
     FlatPose at = from;
     for (const FlatPose& next : movePoses(from, to)) {
@@ -148,6 +148,15 @@ bool DaepPlanner::moveSafe(const FlatPose& from, double start, const FlatPose& t
         at = next;
     }
     return true;
+}
+
+bool DaepPlanner::peopleBlockFrontiers(const PlanningContext& context) {
+    if (obstacles_.empty())
+        return false;
+    ignoringPeople_ = true;
+    const bool reached = globalTreeReachesFrontier(context);
+    ignoringPeople_ = false;
+    return reached;
 }
 
 Plan DaepPlanner::facingTravel(const PlanningContext& context, Plan plan) const {

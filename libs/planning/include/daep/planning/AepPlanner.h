@@ -107,6 +107,17 @@ protected:
     /** A node's value from its parent's: AEP adds gain * exp(-lambda * edge). */
     virtual double branchValue(double parentValue, double gain, double edge,
                                const Eigen::Vector3d& p) const;
+    /**
+     * Asked when the global tree found no way to any frontier: whether people alone are in
+     * the way, so the frontiers are kept and tried again as the people move, instead of the
+     * failure counting towards the end of the mission (AEP: never, it ignores people).
+     */
+    virtual bool peopleBlockFrontiers(const PlanningContext& context);
+    /**
+     * Grows a global tree from the pose towards the live frontiers (its nodes' gains enter
+     * the cache, so it also finds new ones); true when it reaches one.
+     */
+    bool globalTreeReachesFrontier(const PlanningContext& context);
     GainEvaluator& gainEvaluator() { return gain_; }
     const GainEvaluator& gainEvaluator() const { return gain_; }
     const MotionLimits& motion() const { return motion_; }
@@ -132,7 +143,8 @@ private:
     Plan globalPlan(const PlanningContext& context, double localScore);
     /** Re-casts a cached viewpoint; drops it (false) when its gain fell to the threshold. */
     bool verifyFrontier(const mapping::ExplorationMap& map, int id);
-    void growGlobal(const PlanningContext& context, const std::vector<int>& frontiers);
+    /** Returns whether a node came within goal_radius of a live frontier. */
+    bool growGlobal(const PlanningContext& context, const std::vector<int>& frontiers);
     std::vector<Eigen::Vector3d> shortcut(const PlanningContext& context,
                                           const std::vector<Eigen::Vector3d>& path) const;
     Plan pathPlan(const PlanningContext& context, const std::vector<Eigen::Vector3d>& path,

@@ -96,6 +96,8 @@ protected:
     double moveTime(const FlatPose& a, const FlatPose& b) const override;
     double branchValue(double parentValue, double gain, double edge,
                        const Eigen::Vector3d& p) const override;
+    /** Whether a global tree that ignores the people reaches a frontier (dynamic frontiers). */
+    bool peopleBlockFrontiers(const PlanningContext& context) override;
 
 private:
     void observePeople(const PlanningContext& context);
@@ -121,6 +123,7 @@ private:
     DynamicObstacles obstacles_;
     FrequencyMap dfm_;
     double lastObservation_ = -1e300;
+    bool ignoringPeople_ = false;  ///< moves are checked against static geometry only
 };
 
 }  // namespace daep::planning
