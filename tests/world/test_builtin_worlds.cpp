@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "daep/world/RayCaster.h"
 #include "daep/world/WorldSpec.h"
@@ -181,6 +184,110 @@ TEST(BuiltinWorlds, TunnelIsWalledOnItsLongSidesAndVaulted) {
     // The excavator stands in the middle, between starts 1 (y = 5) and 3 (y = 12.4).
     EXPECT_LT(caster.castRay(Eigen::Vector3f(1.4f, 5.0f, 0.5f), Eigen::Vector3f(0, 1, 0), 100.0f),
               4.0f);
+}
+
+/** The box named `name`; fails the test (and returns the first box) when there is none. */
+const BoxShape& boxNamed(const WorldSpec& w, const std::string& name) {
+    for (const auto& b : w.boxes)
+        if (b.name == name)
+            return b;
+    ADD_FAILURE() << w.name << " has no box " << name;
+    return w.boxes.front();
+}
+
+/** A nist_maze_wall_240 model pose from worlds/<world>_static.world, <state> section. */
+struct PanelPose {
+    const char* world;
+    const char* name;
+    double x, y, z, yaw;
+};
+
+TEST(BuiltinWorlds, PanelsStandOffTheirModelPoseAsTheMeshDoes) {
+    // The model's mesh (nist_maze_wall_240.dae: Rx(-90 deg) * scale 0.59) is a board
+    // x -0.6..0.6, y 0.595..0.605, z 0..2.4 in the model frame: the panel's centre is
+    // pose + R(yaw) (0, 0.6, 1.2).
+    for (const PanelPose& p :
+         {PanelPose{"maze", "nist_maze_wall_240", 6.51795, 0.945836, 0, 0},
+          PanelPose{"maze", "nist_maze_wall_240_3", -0.904587, -17.063, 0, 0},
+          PanelPose{"apartment", "nist_maze_wall_240", -5.62462, -5.42237, 0, 0},
+          PanelPose{"apartment", "nist_maze_wall_240_9", 13.7787, -12.0973, 0, 0},
+          PanelPose{"apartment", "nist_maze_wall_240_16", 3.28184, 15.2494, 0, -1.56423},
+          PanelPose{"apartment", "nist_maze_wall_240_18", 3.33742, 13.3076, 0, -1.55872}}) {
+        const WorldSpec w = loadWorldFile(resolveWorldPath(p.world));
+        const BoxShape& b = boxNamed(w, p.name);
+        const Eigen::Vector3d origin(p.x, p.y, p.z);
+        const Eigen::Matrix3d r = Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()).matrix();
+        EXPECT_LT((b.pose.translation() - (origin + r * Eigen::Vector3d(0, 0.6, 1.2))).norm(), 2e-3)
+            << p.world << " " << p.name << ": " << b.pose.translation().transpose();
+        EXPECT_LT((b.pose.linear() - r).norm(), 1e-4) << p.world << " " << p.name;
+        EXPECT_TRUE(b.size.isApprox(Eigen::Vector3d(1.2, 0.01, 2.4))) << p.world << " " << p.name;
+        // Seen from the model origin 1 m up, along the model's +y: the board's near face.
+        const RayCaster caster(w);
+        const Eigen::Vector3d o = origin + Eigen::Vector3d(0, 0, 1.0);
+        const float d =
+            caster.castRay(o.cast<float>(), (r * Eigen::Vector3d::UnitY()).cast<float>(), 10.0f);
+        EXPECT_NEAR(d, 0.595, 3e-3) << p.world << " " << p.name;
+    }
+    // Every panel is the 1 cm board.
+    for (const auto& [world, count] : {std::pair{"maze", 7}, std::pair{"apartment", 20}}) {
+        const WorldSpec w = loadWorldFile(resolveWorldPath(world));
+        int panels = 0;
+        for (const auto& b : w.boxes)
+            if (b.name.rfind("nist_maze_wall_240", 0) == 0) {
+                ++panels;
+                EXPECT_TRUE(b.size.isApprox(Eigen::Vector3d(1.2, 0.01, 2.4))) << b.name;
+            }
+        EXPECT_EQ(panels, count) << world;
+    }
+}
+
+/** An opening in a wall that panels close: the wall's centre line, the opening's extent along it.
+ */
+struct Opening {
+    const char* world;
+    bool alongX;       ///< the wall runs along x (its centre line at y = line), else along y
+    double line;       ///< the wall's centre line
+    double halfThick;  ///< half the wall's thickness
+    double from, to;   ///< the opening along the wall
+};
+
+TEST(BuiltinWorlds, PanelsCloseTheOpeningsTheyStandIn) {
+    // Maze: the gaps in the north and south outer walls. Apartment: the doorways under
+    // lintels 18, 19, 20, 4, 2 and 1 (the last at x = 3.9, crossed by the panels turned -90 deg).
+    // The panels used to stand 0.6 m off these lines, leaving the openings passable.
+    const Eigen::Vector3d drone(0.4, 0.4, 0.1);
+    for (const Opening& o : {Opening{"maze", true, 1.475, 0.175, 3.5, 7.05},
+                             Opening{"maze", true, -16.425, 0.175, -1.45, 1.6},
+                             Opening{"apartment", true, -4.725, 0.125, -6.2, -3.6},
+                             Opening{"apartment", true, -11.45, 0.2, 4.7, 9.05},
+                             Opening{"apartment", true, -11.45, 0.2, 9.8, 14.05},
+                             Opening{"apartment", true, 12.375, 0.175, 0.35, 2.95},
+                             Opening{"apartment", true, 12.375, 0.175, -6.5, -3.95},
+                             Opening{"apartment", false, 3.975, 0.175, 13.2, 15.8}}) {
+        const WorldSpec w = loadWorldFile(resolveWorldPath(o.world));
+        const RayCaster caster(w);
+        const StaticCollisionChecker checker(w);
+        auto at = [&](double along, double across, double z) {
+            return o.alongX ? Eigen::Vector3d(along, o.line + across, z)
+                            : Eigen::Vector3d(o.line + across, along, z);
+        };
+        const Eigen::Vector3d normal =
+            o.alongX ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
+        for (double s = o.from; s <= o.to + 1e-9; s += 0.05)
+            for (const double z : {0.3, 1.2, 2.2}) {
+                // The drone cannot stand in the opening ...
+                EXPECT_TRUE(checker.overlaps(at(s, 0, z), drone, 0.0))
+                    << o.world << " opening at " << at(s, 0, z).transpose();
+                // ... and rays from 1 m either side stop in the wall's line.
+                for (const double side : {-1.0, 1.0}) {
+                    const Eigen::Vector3d from = at(s, side, z);
+                    const float d =
+                        caster.castRay(from.cast<float>(), (-side * normal).cast<float>(), 10.0f);
+                    EXPECT_LE(d, 1.0 + o.halfThick + 0.01)
+                        << o.world << " ray from " << from.transpose();
+                }
+            }
+    }
 }
 
 TEST(BuiltinWorlds, AuditoriumTiersCarryTheRaisedStarts) {
