@@ -344,12 +344,20 @@ void fillFree(Grid& grid, std::vector<std::uint32_t> cells) {
     }
 }
 
+/**
+ * Whether a seen cell shares a face, edge or corner with the (solid) cell. Not faces only: a
+ * solid cell is solid when geometry overlaps any part of it, and rays reach its free part
+ * through the free parts of its solid face neighbours (a wall's cell in a corner, a cylinder's
+ * cell inside its bounding square, whose corner is free).
+ */
 bool touchesSeen(const Grid& grid, const Eigen::Vector3i& c) {
-    for (const auto& d : kFaceNeighbours) {
-        const Eigen::Vector3i n = c + d;
-        if (grid.contains(n) && grid.has(grid.index(n), kSeen))
-            return true;
-    }
+    for (int z = -1; z <= 1; ++z)
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x) {
+                const Eigen::Vector3i n = c + Eigen::Vector3i(x, y, z);
+                if (grid.contains(n) && grid.has(grid.index(n), kSeen))
+                    return true;
+            }
     return false;
 }
 

@@ -48,14 +48,16 @@ struct ReachableVolume {
  *   when it is not clear (the drone is there); when it is solid, the nearest non-solid cell
  *   does.
  * - Observable: every non-solid cell 6-connected through non-solid cells to a drone cell, and
- *   every solid cell 6-adjacent to those (the surfaces rays end on). A ray is a straight line
+ *   every solid cell sharing a face, edge or corner with those (the surfaces rays end on: a
+ *   solid cell's free part may lie next to a free cell's edge only). A ray is a straight line
  *   from the camera (in the box) to a cell in the box, so it never leaves the box, whose cells
  *   form a convex block: the grid holds those cells and one ring of cells around them (plus
  *   `margin`); more grid only loosens the bound.
  *
- * Not a strict bound for gaps narrower than a cell whose every cell overlaps geometry: rays
- * may pass them, the fill does not. Deterministic. Throws InputError for bad parameters or
- * when no grid cell is free.
+ * Not a strict bound where free space runs through solid (partly covered) cells only: a gap
+ * narrower than a cell whose every cell overlaps geometry lets rays pass, not the fill, and
+ * a solid cell whose free part is reached that way only is not counted. Deterministic. Throws
+ * InputError for bad parameters or when no grid cell is free.
  */
 ReachableVolume computeReachableVolume(const WorldSpec& world, const Eigen::Vector3d& start,
                                        const ReachParams& params = {});
