@@ -1,4 +1,4 @@
-// daep-world: imports Gazebo worlds into the world format, draws worlds as PNG and bounds the
+// daep-world: imports Gazebo worlds into the world format, draws worlds as PNG, and bounds the
 // coverage a run can reach.
 #include <cmath>
 #include <cstdlib>
@@ -28,7 +28,12 @@ constexpr const char* kUsage =
     "      from spawn_positions/NAME. --skip-missing skips (with a warning) missing models and\n"
     "      meshes and unsupported geometry instead of failing.\n"
     "  daep-world render WORLD --out IMAGE.png [--size PX]\n"
-    "      Draws a top-down view of a world file or built-in world (default 1000 x 1000 px).\n";
+    "      Draws a top-down view of a world file or built-in world (default 1000 x 1000 px).\n"
+    "  daep-world reach WORLD [--start N] [--resolution R] [--robot-radius R] [--climb M]\n"
+    "      Per start (every start unless --start), the most of the exploration box a run can\n"
+    "      observe, in % of the exploration volume: the free space connected to where a drone\n"
+    "      of the robot radius (default 0.3 m) can fly after the climb (default 1 m), and the\n"
+    "      surfaces it ends on, on the map's grid (default 0.2 m cells).\n";
 
 struct Args {
     std::vector<std::string> positional;

@@ -112,7 +112,9 @@ TEST(WorldApp, MissingModelExitsWithTheUri) {
 
 TEST(WorldApp, BadArgumentsExitWithUsage) {
     const auto dir = freshDir("world_args");
-    EXPECT_EQ(runWorld("--help", dir).exitCode, 0);
+    const auto help = runWorld("--help", dir);
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.out.find("daep-world reach WORLD"), std::string::npos) << help.out;
     const auto r = runWorld("render exhibition", dir);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.err.find("--out is required"), std::string::npos) << r.err;
