@@ -1,6 +1,10 @@
-// daep-world: imports Gazebo worlds into the world format and draws worlds as PNG.
+// daep-world: imports Gazebo worlds into the world format, draws worlds as PNG, and bounds the
+// coverage a run can reach.
+#include <cmath>
 #include <cstdlib>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -8,6 +12,7 @@
 #include "daep/common/AppMain.h"
 #include "daep/common/Error.h"
 #include "daep/world/GazeboImport.h"
+#include "daep/world/ReachableVolume.h"
 #include "daep/world/WorldSpec.h"
 
 namespace {
@@ -23,7 +28,12 @@ constexpr const char* kUsage =
     "      from spawn_positions/NAME. --skip-missing skips (with a warning) missing models and\n"
     "      meshes and unsupported geometry instead of failing.\n"
     "  daep-world render WORLD --out IMAGE.png [--size PX]\n"
-    "      Draws a top-down view of a world file or built-in world (default 1000 x 1000 px).\n";
+    "      Draws a top-down view of a world file or built-in world (default 1000 x 1000 px).\n"
+    "  daep-world reach WORLD [--start N] [--resolution R] [--robot-radius R] [--climb M]\n"
+    "      Per start (every start unless --start), the most of the exploration box a run can\n"
+    "      observe, in % of the exploration volume: the free space connected to where a drone\n"
+    "      of the robot radius (default 0.3 m) can fly after the climb (default 1 m), and the\n"
+    "      surfaces it ends on, on the map's grid (default 0.2 m cells).\n";
 
 struct Args {
     std::vector<std::string> positional;
@@ -31,6 +41,8 @@ struct Args {
     int size = 1000;
     std::string startsFile;
     daep::world::GazeboImportOptions import;
+    int start = -1;  ///< reach: -1 = every start
+    daep::world::ReachParams reach;
 };
 
 std::string nextValue(int& i, int argc, char** argv) {
@@ -46,6 +58,23 @@ int parseSize(const std::string& text) {
         throw daep::InputError("--size: expected a whole number of pixels in 200..10000, got '" +
                                text + "'");
     return static_cast<int>(v);
+}
+
+int parseStart(const std::string& text) {
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (end == text.c_str() || *end != '\0' || v < 0 || v > 1000000)
+        throw daep::InputError("--start: expected a start index >= 0, got '" + text + "'");
+    return static_cast<int>(v);
+}
+
+/** A number for `flag` that must be > 0 (or >= 0 when zeroAllowed). */
+double parseLength(const std::string& flag, const std::string& text, bool zeroAllowed) {
+    const double v = daep::parseNumber(flag, text.c_str());
+    if (!std::isfinite(v) || v < 0 || (!zeroAllowed && v == 0))
+        throw daep::InputError(flag + ": expected a length " + (zeroAllowed ? ">= 0" : "> 0") +
+                               " in metres, got '" + text + "'");
+    return v;
 }
 
 Args parseArgs(int argc, char** argv) {
@@ -71,6 +100,14 @@ Args parseArgs(int argc, char** argv) {
             o.name = nextValue(i, argc, argv);
         else if (arg == "--skip-missing")
             o.skipMissing = true;
+        else if (arg == "--start")
+            a.start = parseStart(nextValue(i, argc, argv));
+        else if (arg == "--resolution")
+            a.reach.resolution = parseLength(arg, nextValue(i, argc, argv), false);
+        else if (arg == "--robot-radius")
+            a.reach.robotRadius = parseLength(arg, nextValue(i, argc, argv), true);
+        else if (arg == "--climb")
+            a.reach.climb = parseLength(arg, nextValue(i, argc, argv), true);
         else if (!arg.empty() && arg[0] == '-')
             throw daep::InputError("unknown option " + arg);
         else
@@ -78,12 +115,16 @@ Args parseArgs(int argc, char** argv) {
     }
     if (a.positional.size() != 1)
         throw daep::InputError("expected exactly one input file");
-    if (a.out.empty())
-        throw daep::InputError("--out is required");
     return a;
 }
 
+void requireOut(const Args& a) {
+    if (a.out.empty())
+        throw daep::InputError("--out is required");
+}
+
 int runImport(const Args& a) {
+    requireOut(a);
     auto options = a.import;
     if (!options.startsFile.empty() && options.startsKey.empty())
         throw daep::InputError("--starts needs --starts-key");
@@ -103,9 +144,47 @@ int runImport(const Args& a) {
 }
 
 int runRender(const Args& a) {
+    requireOut(a);
     const auto world = daep::world::loadWorldFile(daep::world::resolveWorldPath(a.positional[0]));
     daep::worldapp::renderWorldPng(world, a.out, a.size);
     std::cout << "wrote " << a.out << " (" << a.size << " x " << a.size << " px)\n";
+    return 0;
+}
+
+std::string formatPoint(const Eigen::Vector3d& p) {
+    std::ostringstream o;
+    o << std::defaultfloat << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+    return o.str();
+}
+
+void printReach(int index, const Eigen::Vector3d& start, const daep::world::ReachableVolume& r) {
+    std::cout << "start " << index << " " << formatPoint(start) << ": reachable " << std::fixed
+              << std::setprecision(2) << r.reachablePercent << " %  (observable "
+              << std::setprecision(1) << r.observableVolume << " m^3; the drone's own cells "
+              << r.droneVolume << " m^3 = " << std::setprecision(2) << r.dronePercent << " %)";
+    if (r.seedMoved)
+        std::cout << "  [spawn cell solid: filled from " << formatPoint(r.seed) << "]";
+    else if (!r.seedClear)
+        std::cout << "  [spawn cell lacks the drone's clearance]";
+    std::cout << std::defaultfloat << "\n";
+}
+
+int runReach(const Args& a) {
+    if (!a.out.empty())
+        throw daep::InputError("reach writes no file: --out is not an option of reach");
+    const auto world = daep::world::loadWorldFile(daep::world::resolveWorldPath(a.positional[0]));
+    const int starts = static_cast<int>(world.starts.size());
+    if (a.start >= starts)
+        throw daep::InputError("--start: " + std::to_string(a.start) + " is out of range 0.." +
+                               std::to_string(starts - 1) + " for world " + world.name);
+    const auto& p = a.reach;
+    std::cout << world.name << ": exploration volume " << world.explorationVolume()
+              << " m^3, resolution " << p.resolution << " m, robot radius " << p.robotRadius
+              << " m, climb " << p.climb << " m\n";
+    for (int s = 0; s < starts; ++s)
+        if (a.start < 0 || s == a.start)
+            printReach(s, world.starts[std::size_t(s)],
+                       daep::world::computeReachableVolume(world, world.starts[std::size_t(s)], p));
     return 0;
 }
 
@@ -117,7 +196,7 @@ int main(int argc, char** argv) {
         std::cout << kUsage;
         return 0;
     }
-    if (command != "import" && command != "render") {
+    if (command != "import" && command != "render" && command != "reach") {
         std::cerr << (command.empty() ? "error: no command\n"
                                       : "error: unknown command '" + command + "'\n")
                   << kUsage;
@@ -125,6 +204,8 @@ int main(int argc, char** argv) {
     }
     return daep::runApp([&] {
         const Args args = parseArgs(argc, argv);
+        if (command == "reach")
+            return runReach(args);
         return command == "import" ? runImport(args) : runRender(args);
     });
 }

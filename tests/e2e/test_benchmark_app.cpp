@@ -56,7 +56,7 @@ TEST(BenchmarkApp, SmokeBenchmarkRunsAggregatesAndResumes) {
     const auto csv = lines(readText(out / "results.csv"));
     ASSERT_EQ(csv.size(), 5u) << readText(out / "results.csv");
     EXPECT_EQ(csv[0].rfind("world,mode,planner,start,repetition,seed,status,exit_code,log,"
-                           "coverage_percent,exploration_time_s,path_length_m",
+                           "coverage_percent,reachable_percent,exploration_time_s,path_length_m",
                            0),
               0u);
     for (const char* run :

@@ -62,6 +62,9 @@ TEST(ExploreApp, TinyRoomMissionWritesAllOutputsWithPlausibleMetrics) {
     // A 60 m^3 room explored for up to 120 s: most of it must be known, nothing hit.
     EXPECT_GT(jsonNumber(summary, "coverage_percent"), 60.0);
     EXPECT_LE(jsonNumber(summary, "coverage_percent"), 100.0);
+    // The bound: all but the pillar's 40 hidden cells (see test_world_app.cpp).
+    EXPECT_NEAR(jsonNumber(summary, "reachable_percent"), 99.6, 1e-9);
+    EXPECT_LE(jsonNumber(summary, "coverage_percent"), jsonNumber(summary, "reachable_percent"));
     EXPECT_EQ(jsonNumber(summary, "static_collisions"), 0);
     EXPECT_GT(jsonNumber(summary, "iterations"), 3);
     EXPECT_GT(jsonNumber(summary, "path_length_m"), 1.0);

@@ -43,7 +43,8 @@ TEST(RawlogSourceApp, ReplaysTheShippedDatasetWithAPlanner) {
     EXPECT_NEAR(jsonNumber(summary, "exploration_time_s"), 20.2, 1e-9);
     EXPECT_EQ(jsonNumber(summary, "iterations"), 11.0);  // t = 0, 2, ..., 20
     EXPECT_GT(jsonNumber(summary, "coverage_percent"), 30.0);
-    EXPECT_EQ(jsonNumber(summary, "box_volume_m3"), 80.0);  // tiny_room's box
+    EXPECT_EQ(jsonNumber(summary, "box_volume_m3"), 80.0);            // tiny_room's box
+    EXPECT_EQ(summary.find("reachable_percent"), std::string::npos);  // no start to bound from
     EXPECT_NE(summary.find("\"end_reason\": \"end of rawlog\""), std::string::npos);
     EXPECT_EQ(lineCount(out / "plans.csv"), 12);
     EXPECT_EQ(lineCount(out / "trajectory.csv"), 103);

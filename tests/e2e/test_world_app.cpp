@@ -61,6 +61,41 @@ TEST(WorldApp, RendersABuiltinWorld) {
     EXPECT_EQ(img.rows, 500);
 }
 
+TEST(WorldApp, ReachBoundsEveryStartOfTheTinyRoom) {
+    // 40 x 25 x 10 cells (y centres -2.5 .. 2.3: the south row lies in the wall), the door
+    // wider than the drone: all seen but the 2 x 2 cells inside the pillar in each of the 10
+    // layers, 9960 of 10000 cells. (The partition's cells in the wall row count: rays reach
+    // them past the partition's end.)
+    const auto dir = freshDir("world_reach");
+    const auto r = runWorld("reach " + std::string(DAEP_E2E_DATA) + "/tiny_room.yaml", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (int s = 0; s < 5; ++s)
+        EXPECT_NE(r.out.find("start " + std::to_string(s) + " "), std::string::npos) << r.out;
+    std::size_t lines = 0;
+    for (std::size_t at = r.out.find("reachable 99.60 %  (observable 79.7 m^3");
+         at != std::string::npos; at = r.out.find("reachable 99.60 %", at + 1))
+        ++lines;
+    EXPECT_EQ(lines, 5u) << r.out;
+
+    const auto one = runWorld(
+        "reach " + std::string(DAEP_E2E_DATA) + "/tiny_room.yaml --start 1 --robot-radius 0.8",
+        dir);
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    EXPECT_EQ(one.out.find("start 0 "), std::string::npos) << one.out;
+    EXPECT_NE(one.out.find("start 1 "), std::string::npos) << one.out;
+}
+
+TEST(WorldApp, ReachRejectsBadOptions) {
+    const auto dir = freshDir("world_reach_bad");
+    const auto range = runWorld("reach exhibition --start 5", dir);
+    EXPECT_EQ(range.exitCode, 1);
+    EXPECT_NE(range.err.find("--start: 5 is out of range 0..4"), std::string::npos) << range.err;
+    const auto res = runWorld("reach exhibition --resolution 0", dir);
+    EXPECT_EQ(res.exitCode, 1);
+    EXPECT_NE(res.err.find("--resolution"), std::string::npos) << res.err;
+    EXPECT_EQ(runWorld("reach exhibition --climb abc", dir).exitCode, 1);
+}
+
 TEST(WorldApp, MissingModelExitsWithTheUri) {
     const auto dir = freshDir("world_missing");
     std::ofstream(dir / "w.world")
@@ -77,7 +112,9 @@ TEST(WorldApp, MissingModelExitsWithTheUri) {
 
 TEST(WorldApp, BadArgumentsExitWithUsage) {
     const auto dir = freshDir("world_args");
-    EXPECT_EQ(runWorld("--help", dir).exitCode, 0);
+    const auto help = runWorld("--help", dir);
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.out.find("daep-world reach WORLD"), std::string::npos) << help.out;
     const auto r = runWorld("render exhibition", dir);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.err.find("--out is required"), std::string::npos) << r.err;

@@ -74,10 +74,27 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
           "\"static_collisions\"", "\"iterations\"", "\"exploration_time_s\"", "\"path_length_m\"",
           "\"planning_time_s\""})
         EXPECT_NE(summary.find(key), std::string::npos) << key;
+    EXPECT_EQ(summary.find("reachable_percent"), std::string::npos);  // unset: not written
     EXPECT_EQ(readText(dir / "nested" / "collisions.csv"),
               "person,start_s,end_s,tracked\n2,10.000,11.500,-1\n");
     EXPECT_NE(readText(dir / "nested" / "timing.json").find("\"speedup_vs_real_time\": 50.00"),
               std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(RunRecorder, WritesTheReachableBoundNextToTheCoverage) {
+    const auto dir = tempDir("rec_reach");
+    {
+        RunRecorder rec(dir.string());
+        RunSummary s;
+        s.coveragePercent = 42.125;
+        s.reachablePercent = 97.5;
+        rec.writeSummary(s);
+    }
+    EXPECT_NE(readText(dir / "summary.json")
+                  .find("\"coverage_percent\": 42.1250,\n  \"reachable_percent\": 97.5000,\n"),
+              std::string::npos)
+        << readText(dir / "summary.json");
     fs::remove_all(dir);
 }
 

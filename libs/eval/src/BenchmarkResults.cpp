@@ -22,11 +22,10 @@ namespace {
 
 const std::set<std::string> kLabelKeys = {"world", "mode", "planner", "start", "seed"};
 const std::vector<std::string> kMetricOrder = {
-    "coverage_percent", "exploration_time_s", "path_length_m",
-    "planning_time_s",  "plan_ms_median",     "plan_ms_p95",
-    "collisions",       "static_collisions",  "iterations",
-    "aborted_paths",    "finished",           "end_reason",
-    "known_volume_m3",  "box_volume_m3",      "exploration_start_s",
+    "coverage_percent",  "reachable_percent", "exploration_time_s", "path_length_m",
+    "planning_time_s",   "plan_ms_median",    "plan_ms_p95",        "collisions",
+    "static_collisions", "iterations",        "aborted_paths",      "finished",
+    "end_reason",        "known_volume_m3",   "box_volume_m3",      "exploration_start_s",
     "wall_time_s"};
 
 /** The table rows: label, summary key, whether higher is better. */

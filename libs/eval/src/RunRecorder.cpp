@@ -136,6 +136,8 @@ void RunRecorder::writeSummary(const RunSummary& s) const {
     for (const auto& [key, value] : s.labels)
         std::fprintf(f, "  %s: %s,\n", jsonString(key).c_str(), jsonString(value).c_str());
     std::fprintf(f, "  \"coverage_percent\": %.4f,\n", s.coveragePercent);
+    if (s.reachablePercent)
+        std::fprintf(f, "  \"reachable_percent\": %.4f,\n", *s.reachablePercent);
     std::fprintf(f, "  \"exploration_time_s\": %.3f,\n", s.explorationTime);
     std::fprintf(f, "  \"path_length_m\": %.4f,\n", s.pathLength);
     std::fprintf(f, "  \"planning_time_s\": %.4f,\n", s.planningTime);

@@ -55,8 +55,10 @@ std::string joined(const std::vector<std::string>& v) {
 void printSummary(const eval::RunSummary& s, const std::string& dir) {
     std::cout << std::fixed << std::setprecision(2) << "\n== Result (" << dir << ")\n"
               << "  coverage C          " << s.coveragePercent << " %  (" << s.knownVolume << " of "
-              << s.boxVolume << " m^3)\n"
-              << "  exploration time T  " << s.explorationTime << " s\n"
+              << s.boxVolume << " m^3)\n";
+    if (s.reachablePercent)
+        std::cout << "  reachable at most   " << *s.reachablePercent << " %\n";
+    std::cout << "  exploration time T  " << s.explorationTime << " s\n"
               << "  path length PL      " << s.pathLength << " m\n"
               << "  planning time PT    " << s.planningTime << " s  (median " << s.planMsMedian
               << " ms, p95 " << s.planMsP95 << " ms per call)\n"

@@ -17,6 +17,7 @@
 #include "RawlogRecorder.h"
 #include "SceneExport.h"
 #include "daep/common/Config.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 #include "daep/eval/Statistics.h"
 #include "daep/mapping/ExplorationMap.h"
@@ -28,6 +29,7 @@
 #include "daep/sim/Drone.h"
 #include "daep/world/People.h"
 #include "daep/world/RayCaster.h"
+#include "daep/world/ReachableVolume.h"
 #include "daep/world/WorldSpec.h"
 
 namespace daep::mission {
@@ -113,6 +115,17 @@ struct Mission::Impl {
     /** Known volume over the world's exploration volume (Cafe declares 510 m^3, as the paper). */
     double coveragePercent() const {
         return 100.0 * map.knownVolumeInBox() / world.explorationVolume();
+    }
+
+    /** The most coverage this world and start allow, on the map's grid. */
+    double reachablePercent() const {
+        world::ReachParams p;
+        p.resolution = map.resolution();
+        p.robotRadius =
+            requireNonNegative(ConfigReader(*configForStart, "planning"), "robot_radius");
+        p.climb = settings.climb;
+        return world::computeReachableVolume(world, world.starts[settings.start], p)
+            .reachablePercent;
     }
 
     bool exploring() const { return exploreStart >= 0; }
@@ -332,6 +345,7 @@ struct Mission::Impl {
             ms.push_back(1e3 * s);
         eval::RunSummary s;
         s.coveragePercent = coveragePercent();
+        s.reachablePercent = reachablePercent();
         s.explorationTime = explorationTime();
         s.pathLength = pathLength;
         s.planningTime = planningCharged;

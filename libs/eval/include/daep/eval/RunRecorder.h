@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct MetricsSample {
 /** The final figures of a run (summary.json). */
 struct RunSummary {
     double coveragePercent = 0.0;
+    /** The most coverage the world and start allow (daep::world::computeReachableVolume);
+     * unset for rawlog replays, and then not written. */
+    std::optional<double> reachablePercent;
     double explorationTime = 0.0;
     double pathLength = 0.0;
     double planningTime = 0.0;  ///< total, as charged to the simulated clock
