@@ -79,7 +79,7 @@ std::string detectorSection() {
 
 std::string trackingSection(const std::string& source) {
     return "[tracking]\npeople_source = " + source +
-           "\nsensed_range = 5\nsensed_noise_sigma = 0.05\n"
+           "\nsensed_range = 5\nsensed_noise_sigma = 0.05\nexclude_from_map = true\n"
            "[tracker]\naccel_noise = 0.02\nmeasurement_sigma = 0.02\ninitial_speed_sigma = 1\n"
            "drop_after_s = 2\ndrop_after_misses_in_view = 3\ngate_chi2 = 9.21\nconfirm_hits = 3\n"
            "tentative_drop_after_s = 1\n" +

@@ -137,9 +137,13 @@ struct Mission::Impl {
         if (!world.people.empty())
             caster.setPeople(people.states(), people.params().bodySize);
         camera.render(caster, drone.pose(), t, noiseRng, frame);
-        if (planner->usesPeople())
+        if (planner->usesPeople()) {
             observePeople();  // before the map takes the frame: the detector needs the old map
-        map.insertObservation(frame, drone.pose());
+            map.insertObservation(frame, drone.pose(),
+                                  peopleInput.mapFootprints(t, people.params().bodySize));
+        } else {
+            map.insertObservation(frame, drone.pose());
+        }
         recorder.addPose(t, drone.pose());
         if (rawlog)
             rawlog->addFrame(frame, t, drone.pose(), people.states(), people.params().bodySize);

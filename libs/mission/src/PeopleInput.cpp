@@ -54,9 +54,37 @@ PeopleInputParams PeopleInputParams::fromConfig(const mrpt::config::CConfigFileB
     p.source = requireOneOf(r, "people_source", {"ground_truth", "sensed", "detected"});
     p.sensedRange = requirePositive(r, "sensed_range");
     p.sensedNoiseSigma = requireNonNegative(r, "sensed_noise_sigma");
+    p.excludeFromMap = r.requireBool("exclude_from_map");
     p.tracker = loadTrackerParams(config);
     p.detector = loadDetectorParams(config);
     return p;
+}
+
+namespace {
+
+/** A track is still where the depth frame sees its person this long after its measurement (s). */
+constexpr double kFootprintFreshness = 0.5;
+/** Room around the body for the track's error and the body's turn (m). */
+constexpr double kFootprintMargin = 0.2;
+
+}  // namespace
+
+std::vector<mapping::PersonFootprint> PeopleInput::mapFootprints(
+    double t, const Eigen::Vector3d& bodySize) const {
+    std::vector<mapping::PersonFootprint> out;
+    if (!params_.excludeFromMap)
+        return out;
+    const float radius = float(0.5 * bodySize.head<2>().norm() + kFootprintMargin);
+    for (const perception::PersonForecast& f : forecasts_) {
+        if (t - f.time > kFootprintFreshness)
+            continue;
+        mapping::PersonFootprint p;
+        p.centre = f.at(t).mean.cast<float>();
+        p.radius = radius;
+        p.top = float(bodySize.z() + kFootprintMargin);
+        out.push_back(p);
+    }
+    return out;
 }
 
 PeopleInput::PeopleInput(const PeopleInputParams& params, std::uint64_t seed)

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "daep/common/Types.h"
+#include "daep/mapping/ExplorationMap.h"
 #include "daep/perception/PeopleDetector.h"
 #include "daep/perception/PeopleTracker.h"
 #include "daep/sim/DepthCamera.h"
@@ -34,6 +35,8 @@ struct PeopleInputParams {
     std::string source = "ground_truth";
     double sensedRange = 5.0;        ///< m from the camera
     double sensedNoiseSigma = 0.05;  ///< m, Gaussian on each sensed position
+    /** Depth returns on the people tracked lately are kept out of the map (see mapFootprints). */
+    bool excludeFromMap = true;
     perception::TrackerParams tracker;
     perception::DetectorParams detector;
 
@@ -84,6 +87,13 @@ public:
                 const mapping::ExplorationMap& map, const Eigen::Vector3d& bodySize);
 
     const std::vector<perception::PersonForecast>& forecasts() const { return forecasts_; }
+
+    /**
+     * Where the people measured within the last half second stand at `t`, with a margin: the
+     * depth returns the map should not take as walls. Empty unless excludeFromMap.
+     */
+    std::vector<mapping::PersonFootprint> mapFootprints(double t,
+                                                        const Eigen::Vector3d& bodySize) const;
 
     /**
      * Whether the camera at `sensor` sees person `index`: some ray from it to a point of the
