@@ -210,6 +210,68 @@ TEST_F(DaepRoom, KeepFlyingStopsWhenAPersonIsPredictedOnTheRestOfThePath) {
     EXPECT_FALSE(planner.keepFlying(ctx, plan, 0));
 }
 
+/** Known free for x < knownUntil (no obstacles), unknown beyond; box 0..16 x 0..4 x 0..2. */
+std::unique_ptr<mapping::ExplorationMap> corridorKnownUntil(double knownUntil) {
+    auto map = test::makeMap(test::box(0, 0, 0, 16, 4, 2), 20.0);
+    for (double y = 0.1; y < 4.0; y += 0.2)
+        for (double z = 0.1; z < 2.0; z += 0.2)
+            map->insertPointCloud({knownUntil - 0.1, y, z},
+                                  {Eigen::Vector3f(-100.f, float(y), float(z))});
+    return map;
+}
+
+TEST(DaepDynamicFrontiers, PeopleBlockingTheWayToTheUnknownMakeItWaitNotFinish) {
+    // Four people stand across the corridor at x = 6; the unknown lies beyond x = 12.
+    auto map = corridorKnownUntil(12.0);
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, {2.0, 2.0, 1.0});
+    std::vector<PersonForecast> wall;
+    for (int i = 0; i < 4; ++i)
+        wall.push_back(walker(i, {6.0, 0.5 + i}, {0, 0}, ctx.time));
+    ctx.people = &wall;
+    const Plan blocked = planner.plan(ctx);
+    ASSERT_EQ(blocked.status, Plan::Status::Path) << blocked.reason;
+    EXPECT_NE(blocked.reason.find("people block the way"), std::string::npos) << blocked.reason;
+    EXPECT_GT(planner.cache().size(), 0u);  // the frontiers beyond them are kept
+    for (const Waypoint& w : blocked.waypoints)
+        EXPECT_LT(w.pose.position.x(), 5.0);  // it waits on its side (a look around)
+    // However long they stand there, it does not give up.
+    for (int k = 0; k < 4; ++k) {
+        ctx.time += 1.0;
+        for (PersonForecast& f : wall)
+            f.time = ctx.time;
+        ASSERT_NE(planner.plan(ctx).status, Plan::Status::Finished) << k;
+    }
+    // Once they have gone, it sets off towards the unknown.
+    const std::vector<PersonForecast> nobody;
+    ctx.people = &nobody;
+    const Plan free = planner.plan(ctx);
+    ASSERT_EQ(free.status, Plan::Status::Path) << free.reason;
+    ASSERT_FALSE(free.waypoints.empty()) << free.reason;
+    EXPECT_GT(free.waypoints.back().pose.position.x(), 2.5) << free.reason;
+}
+
+TEST(DaepDynamicFrontiers, FinishesOnceTheBlockedFrontierIsGone) {
+    auto map = corridorKnownUntil(12.0);
+    DaepPlanner planner = makePlanner(4);
+    PlanningContext ctx = contextFor(*map, {2.0, 2.0, 1.0});
+    std::vector<PersonForecast> wall;
+    for (int i = 0; i < 4; ++i)
+        wall.push_back(walker(i, {6.0, 0.5 + i}, {0, 0}, ctx.time));
+    ctx.people = &wall;
+    ASSERT_NE(planner.plan(ctx).status, Plan::Status::Finished);
+    // The whole corridor becomes known (seen from the far end): nothing is left to explore.
+    auto known = corridorKnownUntil(16.5);
+    PlanningContext done = contextFor(*known, {2.0, 2.0, 1.0});
+    done.people = &wall;
+    Plan plan;
+    for (int k = 0; k < 30 && plan.status != Plan::Status::Finished; ++k) {
+        done.time += 1.0;
+        plan = planner.plan(done);
+    }
+    EXPECT_EQ(plan.status, Plan::Status::Finished) << plan.reason;
+}
+
 TEST(DaepParams, MissingOrBadKeysAreNamed) {
     const std::string text = test::defaultsText();
     const auto missing = test::configFromText(test::editKey(text, "daep", "sigma_inflation"));
