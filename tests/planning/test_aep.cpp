@@ -212,6 +212,39 @@ TEST(AepPlanner, GlobalPlanFliesToTheCheapestFrontier) {
     expectRewired(planner, *map);
 }
 
+TEST(AepPlanner, PathSpaceNotOccupiedLetsTheTreeIntoUnknownSpaceButNotThroughWalls) {
+    // Known free for x < 3, unknown beyond, and a wall of hits across the corridor at x = 6.
+    auto map = westKnown(10.0, 3.0);
+    for (double y = 0.1; y < 4.0; y += 0.2)
+        for (double z = 0.1; z < 2.0; z += 0.2)
+            map->insertPointCloud({6.1, y, z}, {Eigen::Vector3f(6.1f, float(y), float(z))});
+    std::string text = test::defaultsText();
+    const std::string unknownToo = "not_occupied";
+    const auto cfg =
+        test::configFromText(test::editKey(text, "planning", "path_space", &unknownToo));
+    const AepParams params = AepParams::fromConfig(*cfg);
+    ASSERT_TRUE(params.crossUnknown);
+    double farthest = 0.0, highest = 0.0;
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        AepPlanner planner(params, GainParams::fromConfig(*cfg), seed);
+        planner.plan(contextFor(*map, {2.0, 2.0, 1.0}));
+        for (int i = 0; i < planner.tree().size(); ++i) {
+            const Eigen::Vector3d& p = planner.tree().node(i).position;
+            EXPECT_LT(p.x(), 5.9);  // the wall's cells and the robot radius before them
+            EXPECT_LE(p.z(), 2.0 - 0.05 + 1e-9);  // the box's top less the drone's half-height
+            farthest = std::max(farthest, p.x());
+            highest = std::max(highest, p.z());
+        }
+    }
+    EXPECT_GT(farthest, 3.5);  // beyond the known space
+    EXPECT_GT(highest, 1.7);   // above the box shrunk by the robot radius
+    // With known_free (the default) every node stays in the known part.
+    AepPlanner known = makePlanner(1);
+    known.plan(contextFor(*map, {2.0, 2.0, 1.0}));
+    for (int i = 0; i < known.tree().size(); ++i)
+        EXPECT_LT(known.tree().node(i).position.x(), 3.0);
+}
+
 TEST(AepPlanner, FinishedWhenNoFrontierIsLeft) {
     auto map = westKnown(8.0, 8.5);
     AepPlanner planner = makePlanner(7);

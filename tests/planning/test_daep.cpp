@@ -272,6 +272,25 @@ TEST(DaepDynamicFrontiers, FinishesOnceTheBlockedFrontierIsGone) {
     EXPECT_EQ(plan.status, Plan::Status::Finished) << plan.reason;
 }
 
+TEST_F(DaepRoom, FrontiersPeopleHideForNowAreStillCached) {
+    // Someone is within view range of every node: the tree scores the views past them, and
+    // the cache keeps what each node would see were they gone.
+    DaepPlanner planner = makePlanner(6);
+    PlanningContext ctx = contextFor(*map, root);
+    const std::vector<PersonForecast> people{
+        walker(0, {1.0, 1.0}, {0, 0}, ctx.time), walker(1, {1.0, 3.0}, {0, 0}, ctx.time),
+        walker(2, {6.5, 1.0}, {0, 0}, ctx.time), walker(3, {6.5, 3.0}, {0, 0}, ctx.time)};
+    ctx.people = &people;
+    planner.plan(ctx);
+    ASSERT_GT(planner.cache().size(), 0u);
+    const GainEvaluator gain(GainParams::fromConfig(*test::configFromText(daepText())));
+    for (int id : planner.cache().liveIds()) {
+        const CachedGain& c = planner.cache().entry(id);
+        EXPECT_GT(c.gain, planner.params().cacheThreshold);
+        EXPECT_LE(c.gain, gain.bestYaw(*map, c.position).gain * 6.0 + 1e-9);  // boosted at most
+    }
+}
+
 TEST(DaepParams, MissingOrBadKeysAreNamed) {
     const std::string text = test::defaultsText();
     const auto missing = test::configFromText(test::editKey(text, "daep", "sigma_inflation"));

@@ -54,7 +54,10 @@ AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
         failRange(r, "global_goal_bias", p.globalGoalBias, "must be <= 1");
     p.goalRadius = requirePositive(r, "goal_radius");
     p.globalPlannerCounter = requireIntAtLeast(r, "global_planner_counter", 1);
-    p.robotRadius = requireNonNegative(ConfigReader(config, "planning"), "robot_radius");
+    const ConfigReader planning(config, "planning");
+    p.robotRadius = requireNonNegative(planning, "robot_radius");
+    p.crossUnknown =
+        requireOneOf(planning, "path_space", {"known_free", "not_occupied"}) == "not_occupied";
     return p;
 }
 
@@ -104,10 +107,16 @@ void AepPlanner::refreshCache(const mapping::ExplorationMap& map, const Eigen::V
     }
 }
 
+bool AepPlanner::moveInPathSpace(const PlanningContext& context, const Eigen::Vector3d& a,
+                                 const Eigen::Vector3d& b, bool leavingBlocked) const {
+    if (params_.crossUnknown)
+        return context.map->isSegmentFreeOrUnknown(a, b, params_.robotRadius);
+    return segmentFlyable(*context.map, a, b, params_.robotRadius, leavingBlocked);
+}
+
 bool AepPlanner::edgeValid(const PlanningContext& context, int parent,
                            const Eigen::Vector3d& to) const {
-    return segmentFlyable(*context.map, tree_.node(parent).position, to, params_.robotRadius,
-                          parent == 0 && !rootFree_);
+    return moveInPathSpace(context, tree_.node(parent).position, to, parent == 0 && !rootFree_);
 }
 
 Eigen::Vector3d AepPlanner::sampleLocal(const Eigen::Vector3d& center) {
@@ -187,7 +196,7 @@ int AepPlanner::addNode(int parent, const Eigen::Vector3d& p, const YawGain& vie
 int AepPlanner::extend(const PlanningContext& context, const Eigen::Vector3d& sample) {
     const int nearest = tree_.nearest(sample);
     const Eigen::Vector3d p = steer(tree_.node(nearest).position, sample, params_.extensionRange);
-    if (!samplingBox_.contains(p) || !context.map->isSegmentFree(p, p, params_.robotRadius))
+    if (!samplingBox_.contains(p) || !moveInPathSpace(context, p, p, false))
         return -1;
     std::vector<std::pair<double, int>> candidates;  // (cost through it, node)
     for (int i = 0; i < tree_.size(); ++i) {
@@ -296,6 +305,8 @@ Plan AepPlanner::plan(const PlanningContext& context) {
     stats_ = {};
     motion_ = context.motion;
     samplingBox_ = shrink(context.explorationBox, params_.robotRadius);
+    if (params_.crossUnknown)
+        samplingBox_.max.z() = context.explorationBox.max.z() - 0.5 * context.droneSize.z();
     rootFree_ = context.map->isSegmentFree(context.pose.position, context.pose.position,
                                            params_.robotRadius);
     refreshCache(*context.map, context.pose.position);
@@ -398,7 +409,7 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
             path.push_back(tree_.node(i).position);
         const Eigen::Vector3d& last = path.back();
         if (samplingBox_.contains(frontier.position) &&
-            context.map->isSegmentFree(last, frontier.position, params_.robotRadius))
+            moveInPathSpace(context, last, frontier.position, false))
             path.push_back(frontier.position);
         globalFailures_ = 0;
         Plan out = pathPlan(context, shortcut(context, path), view.yaw);
@@ -432,15 +443,13 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
 
 std::vector<Eigen::Vector3d> AepPlanner::shortcut(const PlanningContext& context,
                                                   const std::vector<Eigen::Vector3d>& path) const {
-    const mapping::ExplorationMap& map = *context.map;
-    const double r = params_.robotRadius;
     FlatPose at = context.pose;
     double time = context.time;
     auto headingTo = [&](std::size_t b) {
         return FlatPose{path[b], headingOf(at.position, path[b], at.yaw)};
     };
     auto clear = [&](std::size_t a, std::size_t b) {
-        return segmentFlyable(map, path[a], path[b], r, a == 0 && !rootFree_) &&
+        return moveInPathSpace(context, path[a], path[b], a == 0 && !rootFree_) &&
                moveSafe(at, time, headingTo(b));
     };
     std::vector<Eigen::Vector3d> out{path.front()};

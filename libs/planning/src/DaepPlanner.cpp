@@ -97,6 +97,8 @@ YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3
     for (const BodyOccluder& b : obstacles_.bodiesAt(arrival))
         if ((b.center - p.head<2>()).norm() <= range + b.radius)
             inRange.push_back(b);
+    if (!inRange.empty())
+        cacheStaticView(*context.map, p);
     const Eigen::Vector2d leg = (p - from).head<2>();
     if (facingTravel_ && leg.norm() > 0.05) {
         // Flying facing along the leg, the view at p is the one along it: no turn at the end.
@@ -114,6 +116,13 @@ YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3
         return AepPlanner::viewAt(context, from, p, arrival, rayCast);
     ++mutableStats().rayCasts;
     return gainEvaluator().bestYaw(*context.map, p, &inRange);
+}
+
+void DaepPlanner::cacheStaticView(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) {
+    ++mutableStats().rayCasts;
+    const YawGain view = gainEvaluator().bestYaw(map, p);
+    if (view.gain > params().cacheThreshold)
+        cache().insert(p, view.yaw, view.gain);
 }
 
 std::vector<FlatPose> DaepPlanner::movePoses(const FlatPose& a, const FlatPose& b) const {

@@ -36,6 +36,13 @@ struct AepParams {
     double goalRadius = 1.5;
     int globalPlannerCounter = 25;
     double robotRadius = 0.3;
+    /**
+     * [planning] path_space = not_occupied: nodes and moves may lie in unknown space (only
+     * occupied cells block, as the reference planners' line check), up to the box's top less
+     * the drone's half-height; known_free: known free space only, in the box shrunk by the
+     * robot radius.
+     */
+    bool crossUnknown = false;
 
     /** Reads and validates the keys of `section`; throws InputError naming the bad key. */
     static AepParams fromConfig(const mrpt::config::CConfigFileBase& config,
@@ -125,6 +132,9 @@ protected:
 
 private:
     bool edgeValid(const PlanningContext& context, int parent, const Eigen::Vector3d& to) const;
+    /** A straight move from a to b lies in the path space (see AepParams::crossUnknown). */
+    bool moveInPathSpace(const PlanningContext& context, const Eigen::Vector3d& a,
+                         const Eigen::Vector3d& b, bool leavingBlocked) const;
     Eigen::Vector3d sampleLocal(const Eigen::Vector3d& center);
     /**
      * One RRT* step towards the sample: steer, pick the cheapest valid parent within the rewire

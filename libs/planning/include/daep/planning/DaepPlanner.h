@@ -101,6 +101,11 @@ protected:
 
 private:
     void observePeople(const PlanningContext& context);
+    /**
+     * Caches the view at p as if nobody stood in it: a frontier people hide for now is still
+     * a frontier (the tree scores p by what is visible past them).
+     */
+    void cacheStaticView(const mapping::ExplorationMap& map, const Eigen::Vector3d& p);
     /** The plan up to its first unsafe move (at least one move, or none). */
     Plan cutAtFirstUnsafe(const PlanningContext& context, Plan plan) const;
     Plan bestEscape(const PlanningContext& context) const;
