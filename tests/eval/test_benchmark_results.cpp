@@ -98,6 +98,16 @@ TEST(BenchmarkResults, TableIsMeanAndStdOverWorldsOfPerWorldMeans) {
     EXPECT_NE(md.find("| **T s** | **50.00** ± 0.00 | 225.00 ± 106.07 |"), std::string::npos) << md;
     // PT is 1.5 for everyone: a tie is bold in both columns.
     EXPECT_NE(md.find("| **PT s** | **1.50** ± 0.00 | **1.50** ± 0.00 |"), std::string::npos) << md;
+
+    // Per world: the means over each planner's ok runs (no reachable_percent here: "-").
+    const std::string perWorld = perWorldMarkdown(runs, "dynamic", {"dep", "aep"});
+    EXPECT_NE(perWorld.find("| wa | AEP | 2 | 85.00 | - | 150.00 | 3.00 | 0.00 |"),
+              std::string::npos)
+        << perWorld;
+    EXPECT_NE(perWorld.find("| wb | DEP | 1 | 70.00 | - | 50.00 | 0.00 | 0.00 |"),
+              std::string::npos)
+        << perWorld;
+    EXPECT_LT(perWorld.find("| wa | DEP"), perWorld.find("| wb | AEP"));  // world by world
     fs::remove_all(root);
 }
 

@@ -413,6 +413,41 @@ std::vector<ResultTable> buildTables(const std::vector<RunResult>& runs,
     return tables;
 }
 
+std::string perWorldMarkdown(const std::vector<RunResult>& runs, const std::string& mode,
+                             const std::vector<std::string>& planners) {
+    std::set<std::string> worlds;
+    for (const auto& r : runs)
+        if (r.status == "ok" && r.spec.mode == mode)
+            worlds.insert(r.spec.world);
+    std::ostringstream out;
+    out << "| world | planner | runs | C % | C / reachable % | T s | NOC | static |\n"
+        << "|---|---|---|---|---|---|---|---|\n";
+    for (const auto& world : worlds) {
+        for (const auto& planner : planners) {
+            std::vector<double> c, share, t, noc, statics;
+            for (const auto& r : runs) {
+                if (r.status != "ok" || r.spec.mode != mode || r.spec.world != world ||
+                    r.spec.planner != planner)
+                    continue;
+                c.push_back(r.metric("coverage_percent"));
+                const double reach = r.metric("reachable_percent");
+                if (reach > 0.0)
+                    share.push_back(100.0 * c.back() / reach);
+                t.push_back(r.metric("exploration_time_s"));
+                noc.push_back(r.metric("collisions"));
+                statics.push_back(r.metric("static_collisions"));
+            }
+            if (c.empty())
+                continue;
+            out << "| " << world << " | " << displayName(planner) << " | " << c.size() << " | "
+                << format2(mean(c)) << " | " << (share.empty() ? "-" : format2(mean(share)))
+                << " | " << format2(mean(t)) << " | " << format2(mean(noc)) << " | "
+                << format2(mean(statics)) << " |\n";
+        }
+    }
+    return out.str();
+}
+
 std::vector<std::string> writePlots(const std::vector<RunResult>& runs,
                                     const std::string& plotDirectory) {
     std::vector<std::string> written;
@@ -479,7 +514,8 @@ std::size_t aggregateBenchmark(const std::string& benchmarkDirectory,
         for (const auto& w : worlds)
             list += (list.empty() ? "" : ", ") + w;
         table << "\n## " << t.mode << " (" << worlds.size() << " worlds: " << list << ")\n\n"
-              << t.markdown();
+              << t.markdown() << "\nPer world, means over the runs:\n\n"
+              << perWorldMarkdown(runs, t.mode, t.planners);
     }
     if (!table)
         throw std::runtime_error("cannot write " + (dir / "table.md").string());

@@ -60,6 +60,13 @@ struct ResultTable {
 std::vector<ResultTable> buildTables(const std::vector<RunResult>& runs,
                                      const std::vector<std::string>& plannerOrder = {});
 
+/**
+ * Per world of one mode (rows) and planner: the mean over its ok runs of C %, C as a share of
+ * reachable_percent, T s, NOC and static collisions, with the number of runs. Markdown.
+ */
+std::string perWorldMarkdown(const std::vector<RunResult>& runs, const std::string& mode,
+                             const std::vector<std::string>& planners);
+
 /** Coverage-over-time plot per world/mode and a collision timeline per planner/world/mode. */
 std::vector<std::string> writePlots(const std::vector<RunResult>& runs,
                                     const std::string& plotDirectory);
