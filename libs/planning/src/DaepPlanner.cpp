@@ -165,7 +165,16 @@ bool DaepPlanner::peopleBlockFrontiers(const PlanningContext& context) {
     ignoringPeople_ = true;
     const bool reached = globalTreeReachesFrontier(context);
     ignoringPeople_ = false;
-    return reached;
+    if (reached)
+        return true;
+    // No tree grows at all with someone near: the space around the drone is what the person
+    // hides from the camera, so nothing can be judged finished until they move.
+    const Eigen::Vector2d here = context.pose.position.head<2>();
+    const double range = gainEvaluator().params().range;
+    bool someoneNear = false;
+    for (const BodyOccluder& b : obstacles_.bodiesAt(context.time))
+        someoneNear = someoneNear || (b.center - here).norm() <= range + b.radius;
+    return someoneNear && tree().size() <= 1;
 }
 
 Plan DaepPlanner::facingTravel(const PlanningContext& context, Plan plan) const {
@@ -391,7 +400,7 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
                                                     context.time + params_.evasionHorizon);
     Plan plan = AepPlanner::plan(context);
     if (plan.status == Plan::Status::Finished)
-        return plan;
+        return hoverSafe ? plan : bestEscape(context);  // get clear first, then judge again
     plan = cutAtFirstUnsafe(context, facingTravel(context, std::move(plan)));
     if (!plan.waypoints.empty()) {
         lookBeforeStop(context, plan);
