@@ -123,6 +123,17 @@ inline PlanningContext contextFor(const mapping::ExplorationMap& map,
     return c;
 }
 
+/** Known free for x < knownUntil (no obstacles), unknown beyond; box 0..length x 0..4 x 0..2. */
+inline std::unique_ptr<mapping::ExplorationMap> westKnown(double length, double knownUntil) {
+    // The clearing rays start at knownUntil and must reach x = 0.
+    auto map = makeMap(box(0, 0, 0, length, 4, 2), std::max(15.0, knownUntil + 4.0));
+    for (double y = 0.1; y < 4.0; y += 0.2)
+        for (double z = 0.1; z < 2.0; z += 0.2)
+            map->insertPointCloud({knownUntil - 0.1, y, z},
+                                  {Eigen::Vector3f(-100.f, float(y), float(z))});
+    return map;
+}
+
 /** An 8 x 4 x 2 m box whose western half (x < ~4.5) is seen from (2, 2, 1). */
 struct HalfKnownRoomMap : ::testing::Test {
     void SetUp() override {

@@ -33,15 +33,7 @@ std::vector<Eigen::Vector3f> sphereScan(const Eigen::Vector3d& origin, double di
     return points;
 }
 
-/** Known free for x < knownUntil (no obstacles), unknown beyond; box 0..length x 0..4 x 0..2. */
-std::unique_ptr<mapping::ExplorationMap> westKnown(double length, double knownUntil) {
-    auto map = test::makeMap(box(0, 0, 0, length, 4, 2), 15.0);
-    for (double y = 0.1; y < 4.0; y += 0.2)
-        for (double z = 0.1; z < 2.0; z += 0.2)
-            map->insertPointCloud({knownUntil - 0.1, y, z},
-                                  {Eigen::Vector3f(-100.f, float(y), float(z))});
-    return map;
-}
+using test::westKnown;
 
 TEST(AepGain, CubatureMatchesTheAnalyticUnknownShell) {
     // A ball of radius 2 m around p is known free, everything else unknown: the gain is the

@@ -210,24 +210,20 @@ TEST_F(DaepRoom, KeepFlyingStopsWhenAPersonIsPredictedOnTheRestOfThePath) {
     EXPECT_FALSE(planner.keepFlying(ctx, plan, 0));
 }
 
-/** Known free for x < knownUntil (no obstacles), unknown beyond; box 0..16 x 0..4 x 0..2. */
-std::unique_ptr<mapping::ExplorationMap> corridorKnownUntil(double knownUntil) {
-    auto map = test::makeMap(test::box(0, 0, 0, 16, 4, 2), 20.0);
-    for (double y = 0.1; y < 4.0; y += 0.2)
-        for (double z = 0.1; z < 2.0; z += 0.2)
-            map->insertPointCloud({knownUntil - 0.1, y, z},
-                                  {Eigen::Vector3f(-100.f, float(y), float(z))});
-    return map;
+/** Four people standing across the 4 m wide corridor at x = 6, measured at t. */
+std::vector<PersonForecast> peopleAcrossTheCorridor(double t) {
+    std::vector<PersonForecast> wall;
+    for (int i = 0; i < 4; ++i)
+        wall.push_back(walker(i, {6.0, 0.5 + i}, {0, 0}, t));
+    return wall;
 }
 
 TEST(DaepDynamicFrontiers, PeopleBlockingTheWayToTheUnknownMakeItWaitNotFinish) {
     // Four people stand across the corridor at x = 6; the unknown lies beyond x = 12.
-    auto map = corridorKnownUntil(12.0);
+    auto map = test::westKnown(16.0, 12.0);
     DaepPlanner planner = makePlanner(3);
     PlanningContext ctx = contextFor(*map, {2.0, 2.0, 1.0});
-    std::vector<PersonForecast> wall;
-    for (int i = 0; i < 4; ++i)
-        wall.push_back(walker(i, {6.0, 0.5 + i}, {0, 0}, ctx.time));
+    std::vector<PersonForecast> wall = peopleAcrossTheCorridor(ctx.time);
     ctx.people = &wall;
     const Plan blocked = planner.plan(ctx);
     ASSERT_EQ(blocked.status, Plan::Status::Path) << blocked.reason;
@@ -252,16 +248,14 @@ TEST(DaepDynamicFrontiers, PeopleBlockingTheWayToTheUnknownMakeItWaitNotFinish) 
 }
 
 TEST(DaepDynamicFrontiers, FinishesOnceTheBlockedFrontierIsGone) {
-    auto map = corridorKnownUntil(12.0);
+    auto map = test::westKnown(16.0, 12.0);
     DaepPlanner planner = makePlanner(4);
     PlanningContext ctx = contextFor(*map, {2.0, 2.0, 1.0});
-    std::vector<PersonForecast> wall;
-    for (int i = 0; i < 4; ++i)
-        wall.push_back(walker(i, {6.0, 0.5 + i}, {0, 0}, ctx.time));
+    std::vector<PersonForecast> wall = peopleAcrossTheCorridor(ctx.time);
     ctx.people = &wall;
     ASSERT_NE(planner.plan(ctx).status, Plan::Status::Finished);
     // The whole corridor becomes known (seen from the far end): nothing is left to explore.
-    auto known = corridorKnownUntil(16.5);
+    auto known = test::westKnown(16.0, 16.5);
     PlanningContext done = contextFor(*known, {2.0, 2.0, 1.0});
     done.people = &wall;
     Plan plan;
