@@ -71,6 +71,11 @@ TEST_F(FreeBlockMap, GrazedSurfaceBesideAnOccupiedCellBlocksTheCapsule) {
     const Eigen::Vector3d from(1.9, 0.55, 0.5), to(2.3, 0.55, 0.5);
     EXPECT_FALSE(map_.isSegmentFree(from, to, 0.3));
     EXPECT_FALSE(map_.isSegmentFreeOrUnknown(from, to, 0.3));
+    // Where people enter the map, a cell a person stood in beside a wall looks the same: the
+    // guard is off there.
+    map_.setPeopleMapped(true);
+    EXPECT_TRUE(map_.isSegmentFree(from, to, 0.3));
+    map_.setPeopleMapped(false);
     // Beside an occupied cell, a free cell no ray ended in is free.
     const Eigen::Vector3d left(-1.4, 0, 0);  // the same capsule over cells x 3 and 4
     for (int i = 0; i < 3; ++i)

@@ -38,7 +38,8 @@ void validate(const MapParams& p, const Aabb& box) {
 
 }  // namespace
 
-ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(params.resolution) {
+ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box)
+    : tree(params.resolution), guardGrazed(params.guardGrazedSurfaces) {
     tree.setProbHit(params.probHit);
     tree.setProbMiss(params.probMiss);
     tree.setClampingThresMin(params.clampMin);
@@ -148,6 +149,11 @@ ExplorationMap::ExplorationMap(const MapParams& params, const Aabb& explorationB
 }
 
 ExplorationMap::~ExplorationMap() = default;
+
+void ExplorationMap::setPeopleMapped(bool mapped) {
+    params_.guardGrazedSurfaces = !mapped;
+    impl_->guardGrazed = !mapped;
+}
 
 void ExplorationMap::insertPointCloud(const Eigen::Vector3d& origin,
                                       const std::vector<Eigen::Vector3f>& points) {

@@ -85,6 +85,7 @@ struct ExplorationMap::Impl {
      * cleared. Clearance checks treat it as occupied, or the drone could brush the surface.
      */
     bool grazedSurface(const octomap::OcTreeKey& key) const;
+    bool guardGrazed = true;  ///< MapParams::guardGrazedSurfaces
 
     bool keyInBox(const octomap::OcTreeKey& key) const;
 

@@ -140,7 +140,7 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
             }
             for (int x = std::max<int>(x0, lo[0]); x <= std::min<int>(x1, hi[0]); ++x) {
                 k[0] = octomap::key_type(x);
-                if (allowed(m.stateAt(k)) && !m.grazedSurface(k)) {
+                if (allowed(m.stateAt(k)) && !(m.guardGrazed && m.grazedSurface(k))) {
                     continue;
                 }
                 const Eigen::Vector3d cellLo(m.cellLow(k[0]), y0, z0);

@@ -82,6 +82,9 @@ struct Mission::Impl {
           outputs(loadOutputParams(config.config())),
           scene(outputs, outputDir, logStream) {
         checkStartIsFree();
+        // People the planner does not keep out of the map enter it as occupied cells.
+        map.setPeopleMapped(!world.people.empty() &&
+                            !(planner->usesPeople() && peopleInput.excludesFromMap()));
         framePeriod = 1.0 / camera.params().rateHz;
         if (outputs.rawlog)
             rawlog = std::make_unique<RawlogRecorder>(recorder.path("run.rawlog"));

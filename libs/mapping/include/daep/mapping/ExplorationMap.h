@@ -43,6 +43,12 @@ struct MapParams {
      * clear their ray up to maxRange: outdoors the open sky is otherwise never known.
      */
     bool noReturnIsFree = false;
+    /**
+     * Clearance checks treat grazed surfaces as occupied (see isSegmentFree). Only where no
+     * person enters the map: the trail a mapped person leaves beside a wall or beside what is
+     * left of their own imprint would look like grazed surface too, and close corridors.
+     */
+    bool guardGrazedSurfaces = true;
 };
 
 /**
@@ -84,10 +90,20 @@ public:
     bool isOccupied(const Eigen::Vector3d& p) const { return state(p) == CellState::Occupied; }
     bool isUnknown(const Eigen::Vector3d& p) const { return state(p) == CellState::Unknown; }
 
+    /**
+     * Whether people can enter this map as occupied cells: then grazed surfaces are not
+     * guarded (MapParams::guardGrazedSurfaces).
+     */
+    void setPeopleMapped(bool mapped);
+
     /** All cells touching the axis-aligned box (centre, half extents) are known free. */
     bool isBoxFree(const Eigen::Vector3d& center, const Eigen::Vector3d& halfExtents) const;
 
-    /** The capsule of `radius` around segment a-b lies in known free space. */
+    /**
+     * The capsule of `radius` around segment a-b lies in known free space. A free cell that
+     * rays ended in, beside an occupied cell, counts as occupied (a grazed surface) unless
+     * people are mapped.
+     */
     bool isSegmentFree(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const;
 
     /** Like isSegmentFree but only occupied cells block (unknown space allowed). */

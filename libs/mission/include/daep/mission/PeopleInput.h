@@ -79,6 +79,7 @@ public:
     bool detects() const { return params_.source == "detected"; }
     /** Whether people are known only where the camera looks (sensed or detected). */
     bool fromCamera() const { return params_.source != "ground_truth"; }
+    bool excludesFromMap() const { return params_.excludeFromMap; }
     /**
      * With people_source = detected: finds people in the frame seen from `robot`; call it
      * before the frame goes into the map (the detector looks for what the map contradicts).
