@@ -88,6 +88,24 @@ TEST_F(FreeBlockMap, GrazedSurfaceBesideAnOccupiedCellBlocksTheCapsule) {
     EXPECT_TRUE(map_.isSegmentFree(from, to, 0.3));
 }
 
+TEST_F(FreeBlockMap, GrazedWallFaceInFrontOfAnUnknownInsideBlocksTheCapsule) {
+    // A wall's face 10 cm into cell A; the wall's inside (y index 10 on) was never seen: it
+    // lies beyond the free block. A was hit once, then cleared by rays along the face.
+    const Eigen::Vector3i a(10, 9, 2);  // A: y in [1.8, 2.0]
+    test::occupy(map_, cellCentre(a, kRes));
+    for (int i = 0; i < 6; ++i)
+        test::freeRow(map_, {0, a.y(), a.z()});
+    ASSERT_TRUE(map_.isFree(cellCentre(a, kRes)));
+    ASSERT_TRUE(map_.isUnknown(cellCentre({10, 10, 2}, kRes)));
+    // The capsule comes within 0.25 m of A and 0.45 m of the unknown inside.
+    const Eigen::Vector3d from(1.9, 1.55, 0.5), to(2.3, 1.55, 0.5);
+    EXPECT_FALSE(map_.isSegmentFree(from, to, 0.3));
+    EXPECT_FALSE(map_.isSegmentFreeOrUnknown(from, to, 0.3));
+    // The same capsule beside a face cell no ray ended in passes.
+    const Eigen::Vector3d left(-1.4, 0, 0);
+    EXPECT_TRUE(map_.isSegmentFree(from + left, to + left, 0.3));
+}
+
 TEST_F(FreeBlockMap, SegmentAgainstHandPlacedObstacle) {
     const Eigen::Vector3d a(0.5, 1.0, 0.5), b(3.5, 1.0, 0.5);
     EXPECT_TRUE(map_.isSegmentFree(a, b, 0.3));

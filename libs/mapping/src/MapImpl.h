@@ -80,9 +80,10 @@ struct ExplorationMap::Impl {
     CellState treeState(const octomap::OcTreeKey& key) const;
 
     /**
-     * A free cell that rays have ended in, beside an occupied one: the thin edge of a surface
-     * (a post's side a few cm into the cell) that rays grazing the cell's free part have
-     * cleared. Clearance checks treat it as occupied, or the drone could brush the surface.
+     * A free cell that rays have ended in, beside a cell that is not free: the face of a
+     * surface a few cm into the cell (a post's side; a wall whose inside stays unknown), which
+     * rays grazing the cell's free part have cleared. Clearance checks treat it as occupied,
+     * or the drone could brush the surface.
      */
     bool grazedSurface(const octomap::OcTreeKey& key) const;
     bool guardGrazed = true;  ///< MapParams::guardGrazedSurfaces

@@ -161,7 +161,7 @@ bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key) const {
         for (const int step : {-1, 1}) {
             octomap::OcTreeKey n = key;
             n[axis] = octomap::key_type(int(n[axis]) + step);
-            if (stateAt(n) == CellState::Occupied)
+            if (stateAt(n) != CellState::Free)
                 return true;
         }
     }

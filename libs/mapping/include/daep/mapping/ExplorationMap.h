@@ -101,7 +101,7 @@ public:
 
     /**
      * The capsule of `radius` around segment a-b lies in known free space. A free cell that
-     * rays ended in, beside an occupied cell, counts as occupied (a grazed surface) unless
+     * rays ended in, beside a cell that is not free, counts as occupied (a grazed surface) unless
      * people are mapped.
      */
     bool isSegmentFree(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const;
