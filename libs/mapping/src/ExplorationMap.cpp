@@ -38,8 +38,7 @@ void validate(const MapParams& p, const Aabb& box) {
 
 }  // namespace
 
-ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box)
-    : tree(params.resolution), guardGrazed(params.guardGrazedSurfaces) {
+ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(params.resolution) {
     tree.setProbHit(params.probHit);
     tree.setProbMiss(params.probMiss);
     tree.setClampingThresMin(params.clampMin);
@@ -151,7 +150,6 @@ ExplorationMap::ExplorationMap(const MapParams& params, const Aabb& explorationB
 ExplorationMap::~ExplorationMap() = default;
 
 void ExplorationMap::setPeopleMapped(bool mapped) {
-    params_.guardGrazedSurfaces = !mapped;
     impl_->guardGrazed = !mapped;
 }
 

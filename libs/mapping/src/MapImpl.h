@@ -86,7 +86,7 @@ struct ExplorationMap::Impl {
      * or the drone could brush the surface.
      */
     bool grazedSurface(const octomap::OcTreeKey& key) const;
-    bool guardGrazed = true;  ///< MapParams::guardGrazedSurfaces
+    bool guardGrazed = true;  ///< no person enters the map (setPeopleMapped)
 
     bool keyInBox(const octomap::OcTreeKey& key) const;
 

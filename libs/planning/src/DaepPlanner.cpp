@@ -92,11 +92,7 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
 
 YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& from,
                             const Eigen::Vector3d& p, double arrival, bool rayCast) {
-    std::vector<BodyOccluder> inRange;
-    const double range = gainEvaluator().params().range;
-    for (const BodyOccluder& b : obstacles_.bodiesAt(arrival))
-        if ((b.center - p.head<2>()).norm() <= range + b.radius)
-            inRange.push_back(b);
+    const std::vector<BodyOccluder> inRange = bodiesInView(p, arrival);
     if (!inRange.empty())
         cacheStaticView(*context.map, p);
     const Eigen::Vector2d leg = (p - from).head<2>();
@@ -116,6 +112,15 @@ YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3
         return AepPlanner::viewAt(context, from, p, arrival, rayCast);
     ++mutableStats().rayCasts;
     return gainEvaluator().bestYaw(*context.map, p, &inRange);
+}
+
+std::vector<BodyOccluder> DaepPlanner::bodiesInView(const Eigen::Vector3d& p, double t) const {
+    std::vector<BodyOccluder> inRange;
+    const double range = gainEvaluator().params().range;
+    for (const BodyOccluder& b : obstacles_.bodiesAt(t))
+        if ((b.center - p.head<2>()).norm() <= range + b.radius)
+            inRange.push_back(b);
+    return inRange;
 }
 
 void DaepPlanner::cacheStaticView(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) {
@@ -169,12 +174,7 @@ bool DaepPlanner::peopleBlockFrontiers(const PlanningContext& context) {
         return true;
     // No tree grows at all with someone near: the space around the drone is what the person
     // hides from the camera, so nothing can be judged finished until they move.
-    const Eigen::Vector2d here = context.pose.position.head<2>();
-    const double range = gainEvaluator().params().range;
-    bool someoneNear = false;
-    for (const BodyOccluder& b : obstacles_.bodiesAt(context.time))
-        someoneNear = someoneNear || (b.center - here).norm() <= range + b.radius;
-    return someoneNear && tree().size() <= 1;
+    return tree().size() <= 1 && !bodiesInView(context.pose.position, context.time).empty();
 }
 
 Plan DaepPlanner::facingTravel(const PlanningContext& context, Plan plan) const {

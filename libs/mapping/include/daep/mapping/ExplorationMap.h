@@ -43,12 +43,6 @@ struct MapParams {
      * clear their ray up to maxRange: outdoors the open sky is otherwise never known.
      */
     bool noReturnIsFree = false;
-    /**
-     * Clearance checks treat grazed surfaces as occupied (see isSegmentFree). Only where no
-     * person enters the map: the trail a mapped person leaves beside a wall or beside what is
-     * left of their own imprint would look like grazed surface too, and close corridors.
-     */
-    bool guardGrazedSurfaces = true;
 };
 
 /**
@@ -91,8 +85,10 @@ public:
     bool isUnknown(const Eigen::Vector3d& p) const { return state(p) == CellState::Unknown; }
 
     /**
-     * Whether people can enter this map as occupied cells: then grazed surfaces are not
-     * guarded (MapParams::guardGrazedSurfaces).
+     * Whether people can enter this map as occupied cells (default: no). Then clearance
+     * checks stop treating grazed surfaces as occupied (see isSegmentFree): the trail a mapped
+     * person leaves beside a wall, or beside what is left of their own imprint, looks the same
+     * and would close corridors.
      */
     void setPeopleMapped(bool mapped);
 

@@ -96,11 +96,16 @@ protected:
     double moveTime(const FlatPose& a, const FlatPose& b) const override;
     double branchValue(double parentValue, double gain, double edge,
                        const Eigen::Vector3d& p) const override;
-    /** Whether a global tree that ignores the people reaches a frontier (dynamic frontiers). */
+    /**
+     * Whether a global tree that ignores the people reaches a frontier (dynamic frontiers), or
+     * no tree grows at all while someone is in view range: what they hide is not judged yet.
+     */
     bool peopleBlockFrontiers(const PlanningContext& context) override;
 
 private:
     void observePeople(const PlanningContext& context);
+    /** The predicted bodies at time t within the gain's range of p (they can block its view). */
+    std::vector<BodyOccluder> bodiesInView(const Eigen::Vector3d& p, double t) const;
     /**
      * Caches the view at p as if nobody stood in it: a frontier people hide for now is still
      * a frontier (the tree scores p by what is visible past them).
