@@ -9,6 +9,8 @@ DEMO_PLANNER ?= daep
 CMAKE_FLAGS = -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
 ifneq ($(shell command -v ccache 2>/dev/null),)
 CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+# Paths inside the tree hash as relative ones, so clones in other folders share the cache.
+export CCACHE_BASEDIR := $(CURDIR)
 endif
 
 .PHONY: all deps configure build demo test bench format clean
