@@ -95,7 +95,7 @@ TEST_F(CommandLineTest, BadArgumentsAreOneLineInputErrorsNamingTheArgument) {
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"cfg.ini", "--frobnicate"}, "unknown option --frobnicate"},
         {{"a", "b", "c"}, "unexpected argument c"},
-        {{}, "CONFIG not given"},
+        {{}, "expected CONFIG (got 0 arguments)"},
         {{"cfg.ini", "--range", "far"}, "--range: 'far' is not a number"},
         {{"cfg.ini", "--count", "2.5"}, "--count: '2.5' is not a whole number"},
         {{"cfg.ini", "--out"}, "--out"},

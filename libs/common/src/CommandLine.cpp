@@ -61,7 +61,8 @@ struct CommandLine::Impl {
         if (given.size() > maxPositionals)
             fail("unexpected argument " + given[maxPositionals]);
         if (given.size() < minPositionals)
-            fail(positionalsWhat + " not given");
+            fail("expected " + positionalsWhat + " (got " + std::to_string(given.size()) +
+                 (given.size() == 1 ? " argument)" : " arguments)"));
         if (positionals)
             *positionals = given;
     }

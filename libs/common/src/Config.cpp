@@ -118,7 +118,7 @@ std::string resolveDataPath(const std::string& path) {
     std::error_code ec;
     if (path.empty() || fs::path(path).is_absolute() || fs::exists(path, ec))
         return path;
-    for (const fs::path root : {fs::path(shareDirectory()), fs::path(DAEP_SOURCE_ROOT)})
+    for (const fs::path& root : {fs::path(shareDirectory()), fs::path(DAEP_SOURCE_ROOT)})
         if (fs::exists(root / path, ec))
             return (root / path).string();
     return path;

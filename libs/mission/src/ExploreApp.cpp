@@ -106,11 +106,12 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
         .positionals(config, 0, 1, "config file");
     if (!cli.parse(argc, argv))
         return false;
-    if (listWorlds || listPlanners) {
-        std::cout << joined(listWorlds ? world::builtinWorldNames() : planning::plannerNames())
-                  << "\n";
+    if (listWorlds)
+        std::cout << joined(world::builtinWorldNames()) << "\n";
+    if (listPlanners)
+        std::cout << joined(planning::plannerNames()) << "\n";
+    if (listWorlds || listPlanners)
         return false;
-    }
     if (config.empty())
         throw InputError("daep-explore: no config file given (see daep-explore --help)");
     configPath_ = config.front();
