@@ -5,6 +5,7 @@ JOBS ?= $(shell nproc)
 DEMO_CONFIG ?= config-ini/exhibition_dynamic.ini
 DEMO_OUT ?= out/demo
 DEMO_PLANNER ?= daep
+PREFIX ?= /usr/local
 
 CMAKE_FLAGS = -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
 ifneq ($(shell command -v ccache 2>/dev/null),)
@@ -13,7 +14,7 @@ CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 export CCACHE_BASEDIR := $(CURDIR)
 endif
 
-.PHONY: all deps configure build demo test bench format clean
+.PHONY: all deps configure build demo test bench install format clean
 
 all: build
 
@@ -31,6 +32,10 @@ demo: build
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# The apps into PREFIX/bin, worlds, configs, experiments and datasets into PREFIX/share/daep.
+install: build
+	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
 
 bench: build
 	$(BUILD_DIR)/tests/bench/daep-bench

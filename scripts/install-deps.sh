@@ -3,7 +3,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ccache pkg-config
+  build-essential cmake ccache pkg-config libcli11-dev
   libmrpt-dev mrpt-apps mrpt-common
   liboctomap-dev libeigen3-dev libopencv-dev
   libembree-dev libassimp-dev libnanoflann-dev libtinyxml2-dev

@@ -4,11 +4,14 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "daep/common/AppMain.h"
+#include "daep/common/CommandLine.h"
+#include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/eval/BenchmarkResults.h"
 #include "daep/eval/BenchmarkRunner.h"
@@ -37,14 +40,7 @@ struct Options {
     std::vector<std::string> sets;
     int jobs = 0;
     bool retryFailed = false;
-    bool help = false;
 };
-
-std::string value(int argc, char** argv, int& i) {
-    if (i + 1 >= argc)
-        throw daep::InputError(std::string(argv[i]) + " needs a value");
-    return argv[++i];
-}
 
 int parseJobs(const std::string& text) {
     std::size_t used = 0;
@@ -58,37 +54,26 @@ int parseJobs(const std::string& text) {
     return jobs;
 }
 
-Options parseArguments(int argc, char** argv) {
+/** The options, or nullopt when there is nothing to run (--help, --version). */
+std::optional<Options> parseArguments(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--jobs" || arg == "-j")
-            o.jobs = parseJobs(value(argc, argv, i));
-        else if (arg == "--out")
-            o.out = value(argc, argv, i);
-        else if (arg == "--set")
-            o.sets.push_back(value(argc, argv, i));
-        else if (arg == "--explore")
-            o.explore = value(argc, argv, i);
-        else if (arg == "--emit-jobs")
-            o.emitJobs = value(argc, argv, i);
-        else if (arg == "--aggregate")
-            o.aggregate = value(argc, argv, i);
-        else if (arg == "--help" || arg == "-h")
-            o.help = true;
-        else if (arg == "--retry-failed")
-            o.retryFailed = true;
-        else if (!arg.empty() && arg[0] == '-')
-            throw daep::InputError("unknown option " + arg + "\n" + kUsage);
-        else if (o.config.empty())
-            o.config = arg;
-        else
-            throw daep::InputError("unexpected argument " + arg + "\n" + kUsage);
-    }
-    if (o.help)
-        return o;
+    std::vector<std::string> config;
+    daep::CommandLine cli("daep-benchmark", kUsage);
+    cli.option("-j,--jobs", [&o](const std::string& text) { o.jobs = parseJobs(text); })
+        .option("--out", o.out)
+        .repeated("--set", o.sets)
+        .option("--explore", o.explore)
+        .option("--emit-jobs", o.emitJobs)
+        .option("--aggregate", o.aggregate)
+        .flag("--retry-failed", o.retryFailed)
+        .positionals(config, 0, 1, "benchmark config");
+    if (!cli.parse(argc, argv))
+        return std::nullopt;
+    if (!config.empty())
+        o.config = daep::resolveDataPath(config.front());
     if (o.aggregate.empty() && o.config.empty())
-        throw daep::InputError(std::string("no benchmark config given\n") + kUsage);
+        throw daep::InputError(
+            "daep-benchmark: no benchmark config given (see daep-benchmark --help)");
     if (!o.aggregate.empty() && !o.config.empty())
         throw daep::InputError("--aggregate DIR takes no config");
     return o;
@@ -158,11 +143,9 @@ int benchmark(const Options& o) {
 
 int main(int argc, char** argv) {
     return daep::runApp([&] {
-        const Options o = parseArguments(argc, argv);
-        if (o.help) {
-            std::cout << kUsage;
+        const auto o = parseArguments(argc, argv);
+        if (!o)
             return 0;
-        }
-        return o.aggregate.empty() ? benchmark(o) : aggregate(o.aggregate, {});
+        return o->aggregate.empty() ? benchmark(*o) : aggregate(o->aggregate, {});
     });
 }

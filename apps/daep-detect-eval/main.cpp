@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "daep/common/AppMain.h"
+#include "daep/common/CommandLine.h"
 #include "daep/common/Error.h"
 #include "daep/eval/Statistics.h"
 #include "daep/mission/DetectionEval.h"
@@ -50,30 +51,15 @@ int main(int argc, char** argv) {
         std::vector<std::string> positional, overrides;
         daep::mission::DetectionEvalOptions options;
         std::string csvPath;
-        for (int i = 1; i < argc; ++i) {
-            const std::string arg = argv[i];
-            const bool hasValue = i + 1 < argc;
-            if (arg == "--help" || arg == "-h") {
-                std::cout << kUsage;
-                return 0;
-            }
-            if (arg == "--set" && hasValue)
-                overrides.push_back(argv[++i]);
-            else if (arg == "--range" && hasValue)
-                options.range = daep::parseNumber(arg, argv[++i]);
-            else if (arg == "--min-visible" && hasValue)
-                options.minVisibleFraction = daep::parseNumber(arg, argv[++i]);
-            else if (arg == "--match" && hasValue)
-                options.matchDistance = daep::parseNumber(arg, argv[++i]);
-            else if (arg == "--csv" && hasValue)
-                csvPath = argv[++i];
-            else if (!arg.empty() && arg[0] != '-')
-                positional.push_back(arg);
-            else
-                throw daep::InputError("unexpected argument '" + arg + "'\n" + kUsage);
-        }
-        if (positional.size() != 2)
-            throw daep::InputError(std::string("expected CONFIG.ini and RUN.rawlog\n") + kUsage);
+        daep::CommandLine cli("daep-detect-eval", kUsage);
+        cli.repeated("--set", overrides)
+            .number("--range", options.range)
+            .number("--min-visible", options.minVisibleFraction)
+            .number("--match", options.matchDistance)
+            .option("--csv", csvPath)
+            .positionals(positional, 2, 2, "CONFIG.ini and RUN.rawlog");
+        if (!cli.parse(argc, argv))
+            return 0;
         const auto config = daep::mission::ExperimentConfig::fromFile(positional[0], overrides);
         std::ofstream csv;
         if (!csvPath.empty()) {

@@ -2,8 +2,10 @@
 #include <iomanip>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "daep/common/AppMain.h"
+#include "daep/common/CommandLine.h"
 #include "daep/common/Error.h"
 #include "daep/perception/PredictionEval.h"
 
@@ -14,48 +16,41 @@ constexpr const char* kUsage =
     "                         [--observed 8] [--predicted 12] [--step 0.4]\n"
     "Scores the constant-velocity Kalman predictor on tracks in the ETH/UCY format\n"
     "(frame id x y): ADE, FDE and the fraction of true positions inside the predicted\n"
-    "95 % ellipse, over Social-GAN windows (a person counts when seen in all frames).\n";
+    "95 % ellipse, over Social-GAN windows (a person counts when seen in all frames).\n"
+    "When no window can be scored it prints ADE=n/a FDE=n/a coverage95=n/a and exits 2.\n";
 
 }  // namespace
 
 int main(int argc, char** argv) {
     return daep::runApp([&] {
-        std::string path;
+        std::vector<std::string> path;
         daep::perception::PredictorParams params;
         daep::perception::EvalProtocol protocol;
-        for (int i = 1; i < argc; ++i) {
-            const std::string arg = argv[i];
-            if (arg == "--help" || arg == "-h") {
-                std::cout << kUsage;
-                return 0;
-            }
-            const bool hasValue = i + 1 < argc;
-            if (arg == "--accel-noise" && hasValue)
-                params.accelNoise = daep::parseNumber(arg, argv[++i]);
-            else if (arg == "--measurement-sigma" && hasValue)
-                params.measurementSigma = daep::parseNumber(arg, argv[++i]);
-            else if (arg == "--observed" && hasValue)
-                protocol.observed = static_cast<int>(daep::parseNumber(arg, argv[++i]));
-            else if (arg == "--predicted" && hasValue)
-                protocol.predicted = static_cast<int>(daep::parseNumber(arg, argv[++i]));
-            else if (arg == "--step" && hasValue)
-                protocol.stepSec = daep::parseNumber(arg, argv[++i]);
-            else if (!arg.empty() && arg[0] != '-' && path.empty())
-                path = arg;
-            else
-                throw daep::InputError("unexpected argument '" + arg + "'\n" + kUsage);
-        }
-        if (path.empty())
-            throw daep::InputError(std::string("no tracks file given\n") + kUsage);
+        daep::CommandLine cli("daep-predict-eval", kUsage);
+        cli.number("--accel-noise", params.accelNoise)
+            .number("--measurement-sigma", params.measurementSigma)
+            .integer("--observed", protocol.observed)
+            .integer("--predicted", protocol.predicted)
+            .number("--step", protocol.stepSec)
+            .positionals(path, 1, 1, "tracks file");
+        if (!cli.parse(argc, argv))
+            return 0;
         if (protocol.observed < 2 || protocol.predicted < 1)
             throw daep::InputError("--observed must be >= 2 and --predicted >= 1");
-        const auto tracks = daep::perception::loadPedestrianTracks(path);
+        const auto tracks = daep::perception::loadPedestrianTracks(path.front());
         const auto s = daep::perception::evaluatePredictor(tracks, params, protocol);
-        std::cout << path << ": " << s.windows << " person-windows, " << protocol.observed
+        std::cout << path.front() << ": " << s.windows << " person-windows, " << protocol.observed
                   << " observed / " << protocol.predicted << " predicted steps of "
-                  << protocol.stepSec << " s\n"
-                  << std::fixed << std::setprecision(3) << "ADE=" << s.ade << " FDE=" << s.fde
+                  << protocol.stepSec << " s\n";
+        if (s.windows == 0) {
+            // Zeros would read as a perfect predictor: say that nothing could be scored.
+            std::cout << "ADE=n/a FDE=n/a coverage95=n/a\n";
+            std::cerr << "error: " << path.front() << ": nothing scored: no person is seen in "
+                      << protocol.observed + protocol.predicted << " consecutive frames\n";
+            return 2;
+        }
+        std::cout << std::fixed << std::setprecision(3) << "ADE=" << s.ade << " FDE=" << s.fde
                   << " coverage95=" << s.coverage << "\n";
-        return s.windows > 0 ? 0 : 2;
+        return 0;
     });
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "daep/common/AppMain.h"
+#include "daep/common/CommandLine.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/Replay.h"
@@ -17,26 +18,13 @@ constexpr const char* kUsage =
 }
 
 int main(int argc, char** argv) {
-    std::vector<std::string> positional, overrides;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
-            std::cout << kUsage;
-            return 0;
-        }
-        if (arg == "--set" && i + 1 < argc)
-            overrides.push_back(argv[++i]);
-        else if (!arg.empty() && arg[0] == '-') {
-            std::cerr << "error: unknown option " << arg << "\n" << kUsage;
-            return 1;
-        } else
-            positional.push_back(arg);
-    }
-    if (positional.size() != 2) {
-        std::cerr << kUsage;
-        return 1;
-    }
     return daep::runApp([&] {
+        std::vector<std::string> positional, overrides;
+        daep::CommandLine cli("daep-replay", kUsage);
+        cli.repeated("--set", overrides)
+            .positionals(positional, 2, 2, "CONFIG.ini and TRAJECTORY.csv");
+        if (!cli.parse(argc, argv))
+            return 0;
         const auto config = daep::mission::ExperimentConfig::fromFile(positional[0], overrides);
         const auto r = daep::mission::replayTrajectory(config, positional[1]);
         std::cout << std::fixed << std::setprecision(2) << "frames " << r.frames << "  known "

@@ -4,12 +4,14 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "WorldRender.h"
 #include "daep/common/AppMain.h"
+#include "daep/common/CommandLine.h"
 #include "daep/common/Error.h"
 #include "daep/world/GazeboImport.h"
 #include "daep/world/ReachableVolume.h"
@@ -45,12 +47,6 @@ struct Args {
     daep::world::ReachParams reach;
 };
 
-std::string nextValue(int& i, int argc, char** argv) {
-    if (i + 1 >= argc)
-        throw daep::InputError(std::string(argv[i]) + " needs a value");
-    return argv[++i];
-}
-
 int parseSize(const std::string& text) {
     char* end = nullptr;
     const long v = std::strtol(text.c_str(), &end, 10);
@@ -77,44 +73,39 @@ double parseLength(const std::string& flag, const std::string& text, bool zeroAl
     return v;
 }
 
-Args parseArgs(int argc, char** argv) {
+/** The options of `command` (import, render or reach); nullopt after --help or --version. */
+std::optional<Args> parseArgs(const std::string& command, int argc, char** argv) {
     Args a;
     auto& o = a.import;
-    for (int i = 2; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--out")
-            a.out = nextValue(i, argc, argv);
-        else if (arg == "--size")
-            a.size = parseSize(nextValue(i, argc, argv));
-        else if (arg == "--model-path")
-            o.modelPaths.push_back(nextValue(i, argc, argv));
-        else if (arg == "--people")
-            o.peopleFile = nextValue(i, argc, argv);
-        else if (arg == "--box-config")
-            o.boxConfig = nextValue(i, argc, argv);
-        else if (arg == "--starts")
-            o.startsFile = nextValue(i, argc, argv);
-        else if (arg == "--starts-key")
-            o.startsKey = nextValue(i, argc, argv);
-        else if (arg == "--name")
-            o.name = nextValue(i, argc, argv);
-        else if (arg == "--skip-missing")
-            o.skipMissing = true;
-        else if (arg == "--start")
-            a.start = parseStart(nextValue(i, argc, argv));
-        else if (arg == "--resolution")
-            a.reach.resolution = parseLength(arg, nextValue(i, argc, argv), false);
-        else if (arg == "--robot-radius")
-            a.reach.robotRadius = parseLength(arg, nextValue(i, argc, argv), true);
-        else if (arg == "--climb")
-            a.reach.climb = parseLength(arg, nextValue(i, argc, argv), true);
-        else if (!arg.empty() && arg[0] == '-')
-            throw daep::InputError("unknown option " + arg);
-        else
-            a.positional.push_back(arg);
-    }
-    if (a.positional.size() != 1)
-        throw daep::InputError("expected exactly one input file");
+    daep::CommandLine cli("daep-world " + command, kUsage);
+    cli.positionals(a.positional, 1, 1, "input file");
+    if (command != "reach")
+        cli.option("--out", a.out);
+    if (command == "import")
+        cli.repeated("--model-path", o.modelPaths)
+            .option("--people", o.peopleFile)
+            .option("--box-config", o.boxConfig)
+            .option("--starts", o.startsFile)
+            .option("--starts-key", o.startsKey)
+            .option("--name", o.name)
+            .flag("--skip-missing", o.skipMissing);
+    if (command == "render")
+        cli.option("--size", [&a](const std::string& text) { a.size = parseSize(text); });
+    if (command == "reach")
+        cli.option("--start", [&a](const std::string& t) { a.start = parseStart(t); })
+            .option("--resolution",
+                    [&a](const std::string& t) {
+                        a.reach.resolution = parseLength("--resolution", t, false);
+                    })
+            .option("--robot-radius",
+                    [&a](const std::string& t) {
+                        a.reach.robotRadius = parseLength("--robot-radius", t, true);
+                    })
+            .option("--climb", [&a](const std::string& t) {
+                a.reach.climb = parseLength("--climb", t, true);
+            });
+    if (!cli.parse(argc, argv))
+        return std::nullopt;
     return a;
 }
 
@@ -170,8 +161,6 @@ void printReach(int index, const Eigen::Vector3d& start, const daep::world::Reac
 }
 
 int runReach(const Args& a) {
-    if (!a.out.empty())
-        throw daep::InputError("reach writes no file: --out is not an option of reach");
     const auto world = daep::world::loadWorldFile(daep::world::resolveWorldPath(a.positional[0]));
     const int starts = static_cast<int>(world.starts.size());
     if (a.start >= starts)
@@ -188,24 +177,36 @@ int runReach(const Args& a) {
     return 0;
 }
 
+/** No command, or an unknown one: --help and --version still work. */
+int withoutCommand(int argc, char** argv) {
+    std::vector<std::string> command;
+    daep::CommandLine cli("daep-world", kUsage);
+    cli.positionals(command, 0, 1, "command");
+    if (!cli.parse(argc, argv))
+        return 0;
+    if (command.empty())
+        throw daep::InputError(
+            "daep-world: no command (import, render or reach; see daep-world --help)");
+    throw daep::InputError("daep-world: unknown command '" + command.front() +
+                           "' (import, render or reach; see daep-world --help)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     const std::string command = argc > 1 ? argv[1] : "";
-    if (command == "--help" || command == "-h" || command == "help") {
+    if (command == "help") {
         std::cout << kUsage;
         return 0;
     }
-    if (command != "import" && command != "render" && command != "reach") {
-        std::cerr << (command.empty() ? "error: no command\n"
-                                      : "error: unknown command '" + command + "'\n")
-                  << kUsage;
-        return 1;
-    }
     return daep::runApp([&] {
-        const Args args = parseArgs(argc, argv);
+        if (command != "import" && command != "render" && command != "reach")
+            return withoutCommand(argc, argv);
+        const auto args = parseArgs(command, argc - 1, argv + 1);
+        if (!args)
+            return 0;
         if (command == "reach")
-            return runReach(args);
-        return command == "import" ? runImport(args) : runRender(args);
+            return runReach(*args);
+        return command == "import" ? runImport(*args) : runRender(*args);
     });
 }

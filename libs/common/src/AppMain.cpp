@@ -11,10 +11,10 @@ int runApp(const std::function<int()>& body) {
     try {
         return body();
     } catch (const InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
+        std::cerr << "error: " << errorText(e) << "\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
+        std::cerr << "error: " << errorText(e) << "\n";
         return 2;
     }
 }

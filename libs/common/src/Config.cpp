@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 #include "daep/common/Error.h"
@@ -88,10 +89,39 @@ double ConfigReader::requireAngleDeg(const std::string& keyDeg) const {
     return requireDouble(keyDeg) * M_PI / 180.0;
 }
 
+namespace {
+
+/** PREFIX/share/daep when this program is an installed PREFIX/bin/<app>; "" otherwise. */
+std::string installedShareDirectory() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (ec)
+        return "";
+    const fs::path share = exe.parent_path().parent_path() / "share" / "daep";
+    return fs::is_regular_file(share / "config" / "defaults.ini", ec) ? share.string() : "";
+}
+
+}  // namespace
+
 std::string shareDirectory() {
+    static const std::string installed = installedShareDirectory();
+    if (!installed.empty())
+        return installed;
     if (const char* env = std::getenv("DAEP_SHARE_DIR"); env && *env)
         return env;
     return DAEP_SHARE_DIR;
+}
+
+std::string resolveDataPath(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (path.empty() || fs::path(path).is_absolute() || fs::exists(path, ec))
+        return path;
+    for (const fs::path& root : {fs::path(shareDirectory()), fs::path(DAEP_SOURCE_ROOT)})
+        if (fs::exists(root / path, ec))
+            return (root / path).string();
+    return path;
 }
 
 }  // namespace daep

@@ -1,5 +1,6 @@
 #include "daep/eval/RunRecorder.h"
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -62,6 +63,8 @@ RunRecorder::RunRecorder(const std::string& directory, PlansFormat plans) : dire
     timeseries_ = openForWriting(path("timeseries.csv"),
                                  "t,coverage_percent,path_length_m,planning_time_s,collisions\n");
     trajectory_ = openForWriting(path("trajectory.csv"), "sim_time,x,y,z,yaw\n");
+    trajectoryTum_ =
+        openForWriting(path("trajectory_tum.txt"), "# timestamp tx ty tz qx qy qz qw\n");
     plans_ = openForWriting(path("plans.csv"),
                             plans == PlansFormat::Flight
                                 ? "t,charged_s,status,gain,waypoints,reason\n"
@@ -72,6 +75,7 @@ RunRecorder::RunRecorder(const std::string& directory, PlansFormat plans) : dire
 RunRecorder::~RunRecorder() {
     closeFile(timeseries_);
     closeFile(trajectory_);
+    closeFile(trajectoryTum_);
     closeFile(plans_);
 }
 
@@ -88,6 +92,9 @@ void RunRecorder::addSample(const MetricsSample& s) {
 void RunRecorder::addPose(double time, const FlatPose& p) {
     std::fprintf(trajectory_, "%.3f,%.4f,%.4f,%.4f,%.4f\n", time, p.position.x(), p.position.y(),
                  p.position.z(), p.yaw);
+    // TUM RGB-D format (evo, the TUM benchmark scripts): the yaw as a unit quaternion about z.
+    std::fprintf(trajectoryTum_, "%.3f %.4f %.4f %.4f 0 0 %.6f %.6f\n", time, p.position.x(),
+                 p.position.y(), p.position.z(), std::sin(p.yaw / 2), std::cos(p.yaw / 2));
 }
 
 void RunRecorder::addPlan(double time, double chargedSec, double wallSec, const std::string& status,
@@ -124,6 +131,7 @@ void RunRecorder::addCollision(int personIndex, double start, double end, int tr
 void RunRecorder::flush() {
     std::fflush(timeseries_);
     std::fflush(trajectory_);
+    std::fflush(trajectoryTum_);
     std::fflush(plans_);
 }
 

@@ -70,7 +70,8 @@ void ExperimentConfig::set(const std::string& section, const std::string& key,
 
 ExperimentConfig ExperimentConfig::fromFile(const std::string& path,
                                             const std::vector<std::string>& overrides) {
-    return fromText(readTextFile(path), path, overrides);
+    const std::string file = resolveDataPath(path);
+    return fromText(readTextFile(file), file, overrides);
 }
 
 ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::string& source,

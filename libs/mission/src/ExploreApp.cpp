@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "daep/common/AppMain.h"
+#include "daep/common/CommandLine.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/Mission.h"
@@ -52,8 +53,18 @@ std::string joined(const std::vector<std::string>& v) {
     return out;
 }
 
+/** "planner daep, world cafe, mode dynamic, start 0, seed 1": which run the figures are of. */
+std::string runLabels(const eval::RunSummary& s) {
+    std::string text;
+    for (const char* key : {"planner", "world", "mode", "start", "seed", "rawlog"})
+        if (const auto it = s.labels.find(key); it != s.labels.end())
+            text += (text.empty() ? "" : ", ") + std::string(key) + " " + it->second;
+    return text;
+}
+
 void printSummary(const eval::RunSummary& s, const std::string& dir) {
     std::cout << std::fixed << std::setprecision(2) << "\n== Result (" << dir << ")\n"
+              << "  run                 " << runLabels(s) << "\n"
               << "  coverage C          " << s.coveragePercent << " %  (" << s.knownVolume << " of "
               << s.boxVolume << " m^3)\n";
     if (s.reachablePercent)
@@ -84,40 +95,26 @@ std::string ExploreApp::usage() {
 }
 
 bool ExploreApp::initialize(int argc, const char* const* argv) {
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        const auto needValue = [&](const std::string& flag) {
-            if (i + 1 >= argc)
-                throw InputError(flag + ": missing value");
-            return std::string(argv[++i]);
-        };
-        if (arg == "--help" || arg == "-h") {
-            std::cout << usage();
-            return false;
-        } else if (arg == "--list-worlds") {
-            std::cout << joined(world::builtinWorldNames()) << "\n";
-            return false;
-        } else if (arg == "--list-planners") {
-            std::cout << joined(planning::plannerNames()) << "\n";
-            return false;
-        } else if (arg == "--set") {
-            overrides_.push_back(needValue(arg));
-        } else if (arg.rfind("--set=", 0) == 0) {
-            overrides_.push_back(arg.substr(6));
-        } else if (arg == "--out") {
-            outputDir_ = needValue(arg);
-        } else if (arg == "--quiet" || arg == "-q") {
-            quiet_ = true;
-        } else if (!arg.empty() && arg[0] == '-') {
-            throw InputError("unknown option " + arg + "\n" + usage());
-        } else if (configPath_.empty()) {
-            configPath_ = arg;
-        } else {
-            throw InputError("more than one config file given: " + configPath_ + ", " + arg);
-        }
-    }
-    if (configPath_.empty())
-        throw InputError("no config file given\n" + usage());
+    bool listWorlds = false, listPlanners = false;
+    std::vector<std::string> config;
+    CommandLine cli("daep-explore", usage());
+    cli.repeated("--set", overrides_)
+        .option("--out", outputDir_)
+        .flag("-q,--quiet", quiet_)
+        .flag("--list-worlds", listWorlds)
+        .flag("--list-planners", listPlanners)
+        .positionals(config, 0, 1, "config file");
+    if (!cli.parse(argc, argv))
+        return false;
+    if (listWorlds)
+        std::cout << joined(world::builtinWorldNames()) << "\n";
+    if (listPlanners)
+        std::cout << joined(planning::plannerNames()) << "\n";
+    if (listWorlds || listPlanners)
+        return false;
+    if (config.empty())
+        throw InputError("daep-explore: no config file given (see daep-explore --help)");
+    configPath_ = config.front();
     if (outputDir_.empty())
         outputDir_ = "out/" + std::filesystem::path(configPath_).stem().string();
     return true;

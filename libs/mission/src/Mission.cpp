@@ -435,7 +435,7 @@ eval::RunSummary Mission::run() {
     } catch (const std::exception& e) {
         // Keep what the run produced so far: the outputs below are still written.
         failure = std::current_exception();
-        m.endReason = std::string("error: ") + e.what();
+        m.endReason = "error: " + errorText(e);
     }
     if (m.endReason.empty())
         m.endReason = "interrupted";

@@ -69,7 +69,7 @@ RawlogParams loadRawlogParams(const ExperimentConfig& experiment) {
     const ConfigReader e(experiment.config(), "experiment", source);
     const ConfigReader r(experiment.config(), "rawlog", source);
     RawlogParams p;
-    p.file = optionalString(e, "rawlog_file");
+    p.file = resolveDataPath(optionalString(e, "rawlog_file"));
     if (p.file.empty())
         throw InputError(source + ": [experiment] rawlog_file: required when source = rawlog");
     p.planEvery = r.requireDouble("plan_every_s");
@@ -365,7 +365,7 @@ eval::RunSummary RawlogMission::run() {
         m.endReason = stopRequested_ ? "interrupted" : "end of rawlog";
     } catch (const std::exception& e) {
         failure = std::current_exception();  // keep the outputs of the part that ran
-        m.endReason = std::string("error: ") + e.what();
+        m.endReason = "error: " + errorText(e);
     }
     const eval::RunSummary summary = m.summarize(secondsSince(t0));
     m.writeOutputs(summary);

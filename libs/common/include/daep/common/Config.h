@@ -44,7 +44,18 @@ private:
     std::string source_;
 };
 
-/** Directory of built-in data (worlds, default configs): $DAEP_SHARE_DIR or the build-time path. */
+/**
+ * Directory of built-in data (worlds, default configs, the shipped experiments and datasets):
+ * PREFIX/share/daep for an installed PREFIX/bin/<app>, else $DAEP_SHARE_DIR, else the
+ * source tree's share/daep.
+ */
 std::string shareDirectory();
+
+/**
+ * A relative path that does not exist from the working directory, looked up in the shipped
+ * files: under shareDirectory() (installed: config-ini/, datasets/), then the source tree.
+ * Returns `path` unchanged when found nowhere, so errors name what the user wrote.
+ */
+std::string resolveDataPath(const std::string& path);
 
 }  // namespace daep

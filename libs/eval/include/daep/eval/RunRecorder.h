@@ -62,7 +62,8 @@ enum class PlansFormat { Flight, Replay };
 
 /**
  * Streams a run's records to DIR as they happen (so an interrupted run keeps what it had):
- * timeseries.csv, trajectory.csv and plans.csv; writes summary.json and timing.json at the end.
+ * timeseries.csv, trajectory.csv (and trajectory_tum.txt, the same poses in the TUM format) and
+ * plans.csv; writes summary.json and timing.json at the end.
  * Numbers are printed with fixed precision so equal runs give byte-identical files.
  */
 class RunRecorder {
@@ -109,6 +110,7 @@ private:
     std::string directory_;
     std::FILE* timeseries_ = nullptr;
     std::FILE* trajectory_ = nullptr;
+    std::FILE* trajectoryTum_ = nullptr;  ///< trajectory_tum.txt: the same poses, TUM format
     std::FILE* plans_ = nullptr;
     std::vector<MetricsSample> samples_;
     std::vector<double> chargedPlanTimes_;
