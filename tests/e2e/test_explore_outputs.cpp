@@ -46,7 +46,7 @@ TEST(ExploreOutputs, SummaryEndsWithTheRunsProvenance) {
                            " --quiet --set experiment.max_time_s=3"),
               std::string::npos)
         << summary;
-    EXPECT_EQ(summary.substr(summary.size() - 6), "\"\n  }\n}\n");
+    EXPECT_EQ(summary.substr(summary.size() - 8), "\"\n  }\n}\n");
     // The determinism tests' view of it keeps every metric and drops the whole block.
     const std::string kept = deterministicSummaryText(summary);
     EXPECT_EQ(kept.find("provenance"), std::string::npos) << kept;
@@ -72,6 +72,7 @@ TEST(ExploreOutputs, BadSetValueNamesTheSetNotTheConfigFile) {
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.set << ": " << r.err;
     }
     // A bad value in the file names the file and line.
+    fs::copy_file(std::string(DAEP_E2E_DATA) + "/tiny_room.yaml", dir / "tiny_room.yaml");
     std::ofstream(dir / "bad.ini") << readText(kTinyIni) << "\n[map]\nmax_range = 0\n";
     const auto r =
         runExplore((dir / "bad.ini").string() + " --quiet --out " + (dir / "run").string(), dir);
