@@ -8,6 +8,7 @@ packages=(
   liboctomap-dev libeigen3-dev libopencv-dev
   libembree-dev libassimp-dev libnanoflann-dev libtinyxml2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  nlohmann-json3-dev libssl-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libopengl0
 )
 

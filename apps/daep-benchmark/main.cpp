@@ -15,6 +15,7 @@
 #include "daep/common/Error.h"
 #include "daep/eval/BenchmarkResults.h"
 #include "daep/eval/BenchmarkRunner.h"
+#include "daep/mission/BenchmarkCheck.h"
 
 namespace fs = std::filesystem;
 
@@ -103,6 +104,7 @@ int aggregate(const std::string& dir, const std::vector<std::string>& planners) 
 
 int benchmark(const Options& o) {
     const auto config = daep::eval::loadBenchmarkConfig(o.config, o.sets);
+    auto runs = daep::mission::checkBenchmark(config);  // before anything is launched
     daep::eval::RunnerOptions ro;
     ro.outDirectory = o.out.empty() ? "benchmark-" + fs::path(o.config).stem().string() : o.out;
     ro.exploreBinary = o.explore.empty() ? findExplore() : o.explore;
@@ -113,7 +115,7 @@ int benchmark(const Options& o) {
     ro.retryFailed = o.retryFailed;
     ro.interactive = ::isatty(STDOUT_FILENO) != 0;
     fs::create_directories(ro.outDirectory);
-    daep::eval::BenchmarkRunner runner(config, ro);
+    daep::eval::BenchmarkRunner runner(config, ro, std::move(runs));
 
     if (!o.emitJobs.empty()) {
         const auto n = runner.emitJobs(o.emitJobs);

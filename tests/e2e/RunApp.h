@@ -53,6 +53,25 @@ inline AppResult runExplore(const std::string& args, const std::filesystem::path
     return runApp(DAEP_EXPLORE_BIN, args, scratch);
 }
 
+/**
+ * summary.json without what legitimately differs between equal runs: the wall_time_s line and
+ * the "provenance" block (date, host, command line, build).
+ */
+inline std::string deterministicSummaryText(const std::string& summary) {
+    std::istringstream in(summary);
+    std::string line, out;
+    bool inProvenance = false;
+    while (std::getline(in, line)) {
+        if (line.find("\"provenance\": {") != std::string::npos)
+            inProvenance = true;
+        else if (!inProvenance && line.find("wall_time_s") == std::string::npos)
+            out += line + "\n";
+        else if (inProvenance && line == "  }")
+            inProvenance = false;
+    }
+    return out;
+}
+
 /** The number after "key": in a flat JSON object; NaN if absent. */
 inline double jsonNumber(const std::string& json, const std::string& key) {
     const auto at = json.find("\"" + key + "\":");

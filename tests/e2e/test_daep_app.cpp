@@ -63,16 +63,8 @@ INSTANTIATE_TEST_SUITE_P(Sources, DaepTinyRoom,
 TEST(DaepTinyRoom, SensedRunsAreReproducibleFromTheSeed) {
     const auto dir = freshDir("daep_repro");
     const DaepRun run{"sensed", 4};
-    auto withoutWallTime = [](const std::string& s) {
-        std::string out;
-        std::istringstream in(s);
-        for (std::string line; std::getline(in, line);)
-            if (line.find("wall_time_s") == std::string::npos)
-                out += line + "\n";
-        return out;
-    };
-    const std::string a = withoutWallTime(summaryOf(run, dir / "a"));
-    const std::string b = withoutWallTime(summaryOf(run, dir / "b"));
+    const std::string a = daep::test::deterministicSummaryText(summaryOf(run, dir / "a"));
+    const std::string b = daep::test::deterministicSummaryText(summaryOf(run, dir / "b"));
     EXPECT_EQ(a, b);
     EXPECT_EQ(readText(dir / "a" / "trajectory.csv"), readText(dir / "b" / "trajectory.csv"));
 }

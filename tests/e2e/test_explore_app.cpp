@@ -15,14 +15,8 @@ using daep::test::runExplore;
 
 namespace {
 
-/** summary.json without its wall_time_s line, which is the only non-deterministic field. */
 std::string deterministicSummary(const fs::path& dir) {
-    std::istringstream in(readText(dir / "summary.json"));
-    std::string line, out;
-    while (std::getline(in, line))
-        if (line.find("wall_time_s") == std::string::npos)
-            out += line + "\n";
-    return out;
+    return daep::test::deterministicSummaryText(readText(dir / "summary.json"));
 }
 
 std::vector<std::vector<double>> readCsv(const fs::path& p) {

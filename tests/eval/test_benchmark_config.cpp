@@ -6,6 +6,7 @@
 
 #include "daep/common/Error.h"
 #include "daep/eval/BenchmarkConfig.h"
+#include "daep/eval/BenchmarkResults.h"
 #include "daep/eval/BenchmarkRunner.h"
 
 namespace fs = std::filesystem;
@@ -86,6 +87,53 @@ TEST_F(BenchmarkConfigTest, CommandLineOverridesReplaceBenchmarkKeysAndAddRunSet
     ASSERT_EQ(cfg.sets.size(), 2u);
     EXPECT_EQ(cfg.sets[0].second, "60");
     EXPECT_EQ(cfg.sets[1].first, "rhnbvp.zero_gain");
+}
+
+TEST_F(BenchmarkConfigTest, RemembersWhereEachKeyWasGiven) {
+    const std::string file = (dir_ / "bench.ini").string();
+    const auto cfg = loadBenchmarkConfig(write(kValid), {"benchmark.starts=4", "camera.width=9"});
+    EXPECT_EQ(cfg.where("planners"), file + ":3");
+    EXPECT_EQ(cfg.where("starts"), "--set benchmark.starts");
+    EXPECT_EQ(cfg.where("experiment.max_time_s"), file + ":12");
+    EXPECT_EQ(cfg.where("camera.width"), "--set camera.width");
+    const auto overrides = cfg.runOverrides(cfg.expand().front());
+    EXPECT_EQ(overrides.front(), "experiment.max_time_s=30");
+    EXPECT_EQ(overrides.back(), "experiment.seed=10");
+}
+
+TEST_F(BenchmarkConfigTest, ARunRunsAgainWhenItsInputsChanged) {
+    const auto cfg =
+        loadBenchmarkConfig(write(kValid), {"benchmark.planners=aep", "benchmark.worlds=cafe",
+                                            "benchmark.starts=0", "benchmark.repetitions=1"});
+    RunSpec before = cfg.expand().front();
+    before.inputs = {"[experiment]\nmax_time_s = 30\n\n", {{"cafe.yaml", "aaa"}}, "d1"};
+    RunnerOptions options;
+    options.outDirectory = (dir_ / "out").string();
+    options.exploreBinary = "/bin/true";
+    const BenchmarkRunner previous(cfg, options, {before});
+    const fs::path runDir = previous.runDirectory(before);
+    writeRunSpec(runDir.string(), before);
+    std::ofstream(runDir / "config.ini") << before.inputs.parameters;
+    std::ofstream(runDir / "exit_code") << "0\n";
+    std::ofstream(runDir / "summary.json") << "{\"coverage_percent\": 1}\n";
+    EXPECT_EQ(previous.changeSinceLastRun(before), "");
+    EXPECT_TRUE(previous.pendingRuns().empty());
+
+    RunSpec now = before;
+    now.inputs = {"[experiment]\nmax_time_s = 60\n\n", {{"cafe.yaml", "aaa"}}, "d2"};
+    const BenchmarkRunner changedParameter(cfg, options, {now});
+    EXPECT_EQ(changedParameter.changeSinceLastRun(now), "[experiment] max_time_s: 30 -> 60");
+    EXPECT_EQ(changedParameter.pendingRuns().size(), 1u);
+
+    now.inputs = {before.inputs.parameters, {{"cafe.yaml", "bbb"}}, "d3"};
+    const BenchmarkRunner changedWorld(cfg, options, {now});
+    EXPECT_EQ(changedWorld.changeSinceLastRun(now), "world file cafe.yaml changed");
+    EXPECT_EQ(changedWorld.pendingRuns().size(), 1u);
+
+    // A failed run is kept without --retry-failed, unless its inputs changed.
+    std::ofstream(runDir / "exit_code") << "2\n";
+    EXPECT_TRUE(previous.pendingRuns().empty());
+    EXPECT_EQ(changedWorld.pendingRuns().size(), 1u);
 }
 
 TEST_F(BenchmarkConfigTest, ErrorsNameFileLineAndKey) {

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "daep/common/Error.h"
 #include "daep/eval/BenchmarkResults.h"
 #include "daep/eval/Plot.h"
 
@@ -60,18 +61,97 @@ TEST(BenchmarkResults, ParsesFlatJson) {
     EXPECT_EQ(kv[2].first, "c");
     EXPECT_EQ(kv[2].second, "true");
     EXPECT_THROW(parseFlatJson("{\"a\" 1}"), std::runtime_error);
+    EXPECT_THROW(parseFlatJson("{\"a\": 1"), std::runtime_error);
+    EXPECT_THROW(parseFlatJson("[1, 2]"), std::runtime_error);
+}
+
+TEST(BenchmarkResults, FlattensNestedObjectsWithDottedKeys) {
+    const auto kv = parseFlatJson(
+        "{\"c\": 12.3400, \"provenance\": {\"git_dirty\": false, \"libraries\": {\"MRPT\": "
+        "\"2.5.8\"}, \"n\": -3}, \"list\": [1, \"x\"], \"z\": null}");
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"c", "12.3400"},
+        {"provenance.git_dirty", "false"},
+        {"provenance.libraries.MRPT", "2.5.8"},
+        {"provenance.n", "-3"},
+        {"list[0]", "1"},
+        {"list[1]", "x"},
+        {"z", "null"}};
+    EXPECT_EQ(kv, expected);
+}
+
+TEST(BenchmarkResults, ProvenanceGoesToItsColumnsAndTheTableHeader) {
+    const auto root = tempDir("provenance");
+    const RunSpec a{"wa", "dynamic", "aep", 0, 0, 1, {}}, b{"wa", "dynamic", "dep", 0, 0, 1, {}};
+    writeRun(root, a, 0, 80, 100, 0);
+    writeRun(root, b, 0, 70, 100, 0);
+    auto addProvenance = [&root](const RunSpec& spec, const std::string& commit) {
+        const auto file = root / "runs" / spec.id() / "summary.json";
+        std::string text = readText(file);
+        text.replace(text.rfind("\n}"), 3,
+                     ",\n  \"provenance\": {\n    \"version\": \"1.2.3\",\n    \"git_commit\": \"" +
+                         commit +
+                         "\",\n    \"git_dirty\": true,\n    \"build_type\": \"Release\",\n"
+                         "    \"compiler\": \"GNU 12\",\n    \"sanitizers\": \"\",\n"
+                         "    \"libraries\": {\"MRPT\": \"2.5.8\"},\n    \"host\": \"node1\",\n"
+                         "    \"date_utc\": \"2026-01-02T03:04:05Z\",\n"
+                         "    \"command_line\": \"daep-explore x.ini\"\n  }\n}");
+        std::ofstream(file) << text;
+    };
+    addProvenance(a, "1111111aaaa");
+    addProvenance(b, "1111111aaaa");
+    EXPECT_EQ(aggregateBenchmark(root.string()), 2u);
+    const std::string csv = readText(root / "results.csv");
+    EXPECT_NE(csv.find(",version,git_commit,git_dirty,build_type,host,date_utc,params_digest\n"),
+              std::string::npos)
+        << csv;
+    EXPECT_NE(csv.find(",1.2.3,1111111aaaa,true,Release,node1,2026-01-02T03:04:05Z,\n"),
+              std::string::npos)
+        << csv;
+    std::string table = readText(root / "table.md");
+    EXPECT_NE(table.find("Made by daep 1.2.3 1111111-dirty (Release, GNU 12; MRPT 2.5.8) (2 runs)"),
+              std::string::npos)
+        << table;
+    EXPECT_NE(table.find("On node1 (2), 2026-01-02T03:04:05Z to 2026-01-02T03:04:05Z."),
+              std::string::npos)
+        << table;
+    EXPECT_EQ(table.find("Mixed builds"), std::string::npos);
+    // The metrics do not take the provenance for theirs.
+    EXPECT_EQ(readRuns(root.string())[0].metrics.size(), 7u);
+
+    writeRun(root, b, 0, 70, 100, 0);
+    addProvenance(b, "2222222bbbb");
+    aggregateBenchmark(root.string());
+    table = readText(root / "table.md");
+    EXPECT_NE(table.find("**Mixed builds**: these runs were made by 2 different builds"),
+              std::string::npos)
+        << table;
+    EXPECT_NE(table.find("- daep 1.2.3 2222222-dirty"), std::string::npos) << table;
+    fs::remove_all(root);
+}
+
+TEST(BenchmarkResults, AggregatingAMissingOrEmptyFolderIsAnInputError) {
+    const auto root = tempDir("missing");
+    try {
+        aggregateBenchmark((root / "nope").string());
+        FAIL() << "expected an InputError";
+    } catch (const daep::InputError& e) {
+        EXPECT_EQ(std::string(e.what()), (root / "nope").string() + ": no such folder");
+    }
+    EXPECT_THROW(aggregateBenchmark(root.string()), daep::InputError);
+    fs::remove_all(root);
 }
 
 TEST(BenchmarkResults, TableIsMeanAndStdOverWorldsOfPerWorldMeans) {
     const auto root = tempDir("table");
     // AEP: world A runs C = 80, 90 (mean 85); world B: 60 -> over worlds mean 72.5, std 17.68.
-    writeRun(root, {"wa", "dynamic", "aep", 0, 0, 1}, 0, 80, 100, 2);
-    writeRun(root, {"wa", "dynamic", "aep", 1, 0, 1}, 0, 90, 200, 4);
-    writeRun(root, {"wb", "dynamic", "aep", 0, 0, 1}, 0, 60, 300, 0);
+    writeRun(root, {"wa", "dynamic", "aep", 0, 0, 1, {}}, 0, 80, 100, 2);
+    writeRun(root, {"wa", "dynamic", "aep", 1, 0, 1, {}}, 0, 90, 200, 4);
+    writeRun(root, {"wb", "dynamic", "aep", 0, 0, 1, {}}, 0, 60, 300, 0);
     // DEP: A 70, B 70 -> 70 ± 0, fewer collisions, shorter time in B; one failed run ignored.
-    writeRun(root, {"wa", "dynamic", "dep", 0, 0, 1}, 0, 70, 50, 1);
-    writeRun(root, {"wb", "dynamic", "dep", 0, 0, 1}, 0, 70, 50, 0);
-    writeRun(root, {"wb", "dynamic", "dep", 1, 0, 1}, 139, 0, 0, 0);
+    writeRun(root, {"wa", "dynamic", "dep", 0, 0, 1, {}}, 0, 70, 50, 1);
+    writeRun(root, {"wb", "dynamic", "dep", 0, 0, 1, {}}, 0, 70, 50, 0);
+    writeRun(root, {"wb", "dynamic", "dep", 1, 0, 1, {}}, 139, 0, 0, 0);
 
     const auto runs = readRuns(root.string());
     ASSERT_EQ(runs.size(), 6u);
@@ -113,9 +193,9 @@ TEST(BenchmarkResults, TableIsMeanAndStdOverWorldsOfPerWorldMeans) {
 
 TEST(BenchmarkResults, AggregateWritesResultsTableAndPlots) {
     const auto root = tempDir("aggregate");
-    writeRun(root, {"wa", "dynamic", "aep", 0, 0, 1}, 0, 80, 100, 2);
-    writeRun(root, {"wa", "dynamic", "aep", 0, 1, 2}, 0, 90, 100, 2);
-    writeRun(root, {"wa", "dynamic", "dep", 0, 0, 1}, 2, 0, 0, 0);
+    writeRun(root, {"wa", "dynamic", "aep", 0, 0, 1, {}}, 0, 80, 100, 2);
+    writeRun(root, {"wa", "dynamic", "aep", 0, 1, 2, {}}, 0, 90, 100, 2);
+    writeRun(root, {"wa", "dynamic", "dep", 0, 0, 1, {}}, 2, 0, 0, 0);
     EXPECT_EQ(aggregateBenchmark(root.string()), 3u);
 
     const std::string csv = readText(root / "results.csv");

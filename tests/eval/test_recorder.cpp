@@ -98,6 +98,39 @@ TEST(RunRecorder, WritesTheReachableBoundNextToTheCoverage) {
     fs::remove_all(dir);
 }
 
+TEST(RunRecorder, SummaryEndsWithTheProvenanceBlock) {
+    const auto dir = tempDir("rec_provenance");
+    {
+        RunRecorder rec(dir.string());
+        RunSummary s;
+        s.wallTime = 1.5;
+        s.provenance = {"node7", "2026-12-02T02:16:33Z", "daep-explore 'a b.ini' --quiet"};
+        rec.writeSummary(s);
+    }
+    const std::string summary = readText(dir / "summary.json");
+    const daep::BuildInfo& b = daep::buildInfo();
+    const std::string expected =
+        "  \"wall_time_s\": 1.500,\n  \"provenance\": {\n"
+        "    \"version\": \"" +
+        b.version +
+        "\",\n"
+        "    \"git_commit\": \"" +
+        b.gitCommit +
+        "\",\n"
+        "    \"git_dirty\": " +
+        (b.gitDirty ? "true" : "false") +
+        ",\n"
+        "    \"build_type\": \"" +
+        b.buildType + "\",\n";
+    EXPECT_NE(summary.find(expected), std::string::npos) << summary;
+    for (const char* line :
+         {"    \"host\": \"node7\",\n", "    \"date_utc\": \"2026-12-02T02:16:33Z\",\n",
+          "    \"command_line\": \"daep-explore 'a b.ini' --quiet\"\n  }\n}\n",
+          "    \"libraries\": {\"MRPT\": \""})
+        EXPECT_NE(summary.find(line), std::string::npos) << line << summary;
+    fs::remove_all(dir);
+}
+
 TEST(RunRecorder, UnwritableDirectoryIsAClearError) {
     try {
         RunRecorder rec("/proc/daep_cannot_write_here");

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "daep/common/Error.h"
+#include "daep/common/TracedConfig.h"
 #include "daep/common/Types.h"
 
 namespace daep {
@@ -25,8 +26,17 @@ bool ConfigReader::has(const std::string& key) const {
     return cfg_.keyExists(section_, key);
 }
 
+std::string ConfigReader::where(const std::string& key) const {
+    if (const auto* traced = dynamic_cast<const TracedConfig*>(&cfg_)) {
+        std::string origin = traced->origin(section_, key);
+        if (!origin.empty())
+            return origin;
+    }
+    return source_;
+}
+
 void ConfigReader::fail(const std::string& key, const std::string& what) const {
-    throw InputError(source_ + ": [" + section_ + "] " + key + ": " + what);
+    throw InputError(where(key) + ": [" + section_ + "] " + key + ": " + what);
 }
 
 std::string ConfigReader::raw(const std::string& key) const {

@@ -110,6 +110,9 @@ public:
         cfg.seed = integer("seed");
         cfg.experiment = experimentPath();
         cfg.sets = sets_;
+        for (const auto& [key, entry] : values_)
+            cfg.origins[key] = entry.where;
+        cfg.origins.insert(setOrigins_.begin(), setOrigins_.end());
         return cfg;
     }
 
@@ -130,6 +133,7 @@ private:
             throw InputError(where + ": [set] key '" + key + "' is not section.key");
         if (kMatrixKeys.count(key))
             throw InputError(where + ": " + key + " is set per run; use [benchmark] instead");
+        setOrigins_[key] = where;
         for (auto& [k, v] : sets_)
             if (k == key) {
                 v = value;
@@ -183,6 +187,7 @@ private:
     std::string path_;
     std::map<std::string, Entry> values_;
     std::vector<std::pair<std::string, std::string>> sets_;
+    std::map<std::string, std::string> setOrigins_;
 };
 
 std::string safeName(const std::string& s) {
@@ -207,8 +212,25 @@ std::vector<RunSpec> BenchmarkConfig::expand() const {
             for (const auto& planner : planners)
                 for (int start : starts)
                     for (int rep = 0; rep < repetitions; ++rep)
-                        runs.push_back({world, mode, planner, start, rep, seed + rep});
+                        runs.push_back({world, mode, planner, start, rep, seed + rep, {}});
     return runs;
+}
+
+std::vector<std::string> BenchmarkConfig::runOverrides(const RunSpec& run) const {
+    std::vector<std::string> out;
+    for (const auto& [key, value] : sets)
+        out.push_back(key + "=" + value);
+    out.push_back("experiment.world=" + run.world);
+    out.push_back("experiment.mode=" + run.mode);
+    out.push_back("experiment.planner=" + run.planner);
+    out.push_back("experiment.start=" + std::to_string(run.start));
+    out.push_back("experiment.seed=" + std::to_string(run.seed));
+    return out;
+}
+
+std::string BenchmarkConfig::where(const std::string& key) const {
+    const auto it = origins.find(key);
+    return it == origins.end() ? source : it->second;
 }
 
 std::vector<int> parseIntList(const std::string& text) {

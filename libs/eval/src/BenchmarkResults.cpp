@@ -10,6 +10,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
+#include "daep/common/BuildInfo.h"
+#include "daep/common/Error.h"
 #include "daep/eval/Plot.h"
 #include "daep/eval/RunRecorder.h"
 #include "daep/eval/Statistics.h"
@@ -20,6 +24,7 @@ namespace daep::eval {
 
 namespace {
 
+const std::string kProvenancePrefix = "provenance.";
 const std::set<std::string> kLabelKeys = {"world", "mode", "planner", "start", "seed"};
 const std::vector<std::string> kMetricOrder = {
     "coverage_percent",  "reachable_percent", "exploration_time_s", "path_length_m",
@@ -27,6 +32,16 @@ const std::vector<std::string> kMetricOrder = {
     "static_collisions", "iterations",        "aborted_paths",      "finished",
     "end_reason",        "known_volume_m3",   "box_volume_m3",      "exploration_start_s",
     "wall_time_s"};
+
+/** results.csv's provenance columns: the fields that can differ between the runs of a benchmark. */
+struct ProvenanceColumn {
+    const char* name;
+    const char* key;  ///< in summary.json's "provenance"
+};
+const ProvenanceColumn kProvenanceColumns[] = {
+    {"version", "version"},     {"git_commit", "git_commit"},
+    {"git_dirty", "git_dirty"}, {"build_type", "build_type"},
+    {"host", "host"},           {"date_utc", "date_utc"}};
 
 /** The table rows: label, summary key, whether higher is better. */
 struct RowDef {
@@ -81,24 +96,68 @@ std::string displayName(const std::string& planner) {
     return out;
 }
 
-/** Parses one JSON string literal starting at text[i] == '"'; advances i past it. */
-std::string parseString(const std::string& text, std::size_t& i) {
-    std::string out;
-    for (++i; i < text.size() && text[i] != '"'; ++i) {
-        if (text[i] != '\\') {
-            out += text[i];
-            continue;
-        }
-        if (++i >= text.size())
-            break;
-        const char e = text[i];
-        out += e == 'n' ? '\n' : e == 't' ? '\t' : e == 'r' ? '\r' : e;
+/**
+ * nlohmann's SAX events to (key, text) pairs: nested objects' members get dotted keys
+ * ("provenance.git_commit"), array elements "[i]"; numbers keep their text as written.
+ */
+class FlatJsonCollector : public nlohmann::json_sax<nlohmann::json> {
+public:
+    bool null() override { return add("null"); }
+    bool boolean(bool value) override { return add(value ? "true" : "false"); }
+    bool number_integer(number_integer_t value) override { return add(std::to_string(value)); }
+    bool number_unsigned(number_unsigned_t value) override { return add(std::to_string(value)); }
+    bool number_float(number_float_t, const string_t& text) override { return add(text); }
+    bool string(string_t& value) override { return add(value); }
+    bool binary(binary_t&) override { throw std::runtime_error("JSON: unexpected binary value"); }
+    bool start_object(std::size_t) override {
+        frames_.push_back({frames_.empty() ? "" : nextName() + ".", false, 0, ""});
+        return true;
     }
-    if (i >= text.size())
-        throw std::runtime_error("unterminated JSON string");
-    ++i;
-    return out;
-}
+    bool key(string_t& name) override {
+        frames_.back().key = name;
+        return true;
+    }
+    bool end_object() override { return pop(); }
+    bool start_array(std::size_t) override {
+        if (frames_.empty())
+            throw std::runtime_error("JSON: expected an object, found an array");
+        frames_.push_back({nextName(), true, 0, ""});
+        return true;
+    }
+    bool end_array() override { return pop(); }
+    bool parse_error(std::size_t, const std::string&,
+                     const nlohmann::detail::exception& error) override {
+        throw std::runtime_error(std::string("JSON: ") + error.what());
+    }
+
+    std::vector<std::pair<std::string, std::string>> take() { return std::move(pairs_); }
+
+private:
+    struct Frame {
+        std::string prefix;
+        bool isArray;
+        int index;
+        std::string key;
+    };
+
+    std::string nextName() {
+        Frame& f = frames_.back();
+        return f.isArray ? f.prefix + "[" + std::to_string(f.index++) + "]" : f.prefix + f.key;
+    }
+    bool add(std::string value) {
+        if (frames_.empty())
+            throw std::runtime_error("JSON: expected an object");
+        pairs_.emplace_back(nextName(), std::move(value));
+        return true;
+    }
+    bool pop() {
+        frames_.pop_back();
+        return true;
+    }
+
+    std::vector<Frame> frames_;
+    std::vector<std::pair<std::string, std::string>> pairs_;
+};
 
 struct Series {
     std::vector<double> t, coverage;
@@ -193,6 +252,34 @@ void writeCollisionPlot(const RunResult& run, const std::string& path) {
 
 }  // namespace
 
+std::string RunResult::provenanceValue(const std::string& key) const {
+    for (const auto& [k, v] : provenance)
+        if (k == key)
+            return v;
+    return "";
+}
+
+std::string buildDescription(const RunResult& run) {
+    std::string text = "daep " + run.build() + " (" + run.provenanceValue("build_type") + ", " +
+                       run.provenanceValue("compiler");
+    const std::string sanitizers = run.provenanceValue("sanitizers");
+    if (!sanitizers.empty())
+        text += ", sanitizers " + sanitizers;
+    std::string libraries;
+    for (const auto& [key, version] : run.provenance)
+        if (key.rfind("libraries.", 0) == 0)
+            libraries += (libraries.empty() ? "" : ", ") + key.substr(10) + " " + version;
+    return text + (libraries.empty() ? "" : "; " + libraries) + ")";
+}
+
+std::string RunResult::build() const {
+    const std::string commit = provenanceValue("git_commit");
+    if (commit.empty())
+        return "";
+    return provenanceValue("version") + " " + commit.substr(0, 7) +
+           (provenanceValue("git_dirty") == "true" ? "-dirty" : "");
+}
+
 double RunResult::metric(const std::string& key, double fallback) const {
     for (const auto& [k, v] : metrics)
         if (k == key) {
@@ -207,51 +294,40 @@ double RunResult::metric(const std::string& key, double fallback) const {
     return fallback;
 }
 
+namespace {
+
+nlohmann::ordered_json inputFiles(const RunInputs& inputs) {
+    nlohmann::ordered_json files = nlohmann::ordered_json::object();
+    for (const auto& [name, digest] : inputs.files)
+        files[name] = digest;
+    return files;
+}
+
+}  // namespace
+
 std::vector<std::pair<std::string, std::string>> parseFlatJson(const std::string& text) {
-    std::vector<std::pair<std::string, std::string>> out;
-    std::size_t i = text.find('{');
-    if (i == std::string::npos)
-        throw std::runtime_error("JSON: no object");
-    auto skip = [&] {
-        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i])))
-            ++i;
-    };
-    for (++i;;) {
-        skip();
-        if (i < text.size() && text[i] == '}')
-            return out;
-        if (i >= text.size() || text[i] != '"')
-            throw std::runtime_error("JSON: expected a key");
-        std::string key = parseString(text, i);
-        skip();
-        if (i >= text.size() || text[i++] != ':')
-            throw std::runtime_error("JSON: expected ':' after \"" + key + "\"");
-        skip();
-        std::string value;
-        if (i < text.size() && text[i] == '"') {
-            value = parseString(text, i);
-        } else {
-            const auto endPos = text.find_first_of(",}", i);
-            if (endPos == std::string::npos)
-                throw std::runtime_error("JSON: unterminated value of \"" + key + "\"");
-            value = text.substr(i, endPos - i);
-            value.erase(value.find_last_not_of(" \t\r\n") + 1);
-            i = endPos;
-        }
-        out.emplace_back(std::move(key), std::move(value));
-        skip();
-        if (i < text.size() && text[i] == ',')
-            ++i;
-    }
+    FlatJsonCollector collector;
+    nlohmann::json::sax_parse(text, &collector);
+    return collector.take();
 }
 
 void writeRunSpec(const std::string& runDirectory, const RunSpec& spec) {
     fs::create_directories(runDirectory);
+    const BuildInfo& build = buildInfo();
+    const nlohmann::ordered_json json = {{"world", spec.world},
+                                         {"mode", spec.mode},
+                                         {"planner", spec.planner},
+                                         {"start", spec.start},
+                                         {"repetition", spec.repetition},
+                                         {"seed", spec.seed},
+                                         {"params_digest", spec.inputs.digest},
+                                         {"input_files", inputFiles(spec.inputs)},
+                                         {"launched_by",
+                                          {{"version", build.version},
+                                           {"git_commit", build.gitCommit},
+                                           {"git_dirty", build.gitDirty}}}};
     std::ofstream out(fs::path(runDirectory) / kRunSpecFile);
-    out << "{\n  \"world\": " << jsonString(spec.world)
-        << ",\n  \"mode\": " << jsonString(spec.mode)
-        << ",\n  \"planner\": " << jsonString(spec.planner) << ",\n  \"start\": " << spec.start
-        << ",\n  \"repetition\": " << spec.repetition << ",\n  \"seed\": " << spec.seed << "\n}\n";
+    out << json.dump(2) << "\n";
     if (!out)
         throw std::runtime_error("cannot write " +
                                  (fs::path(runDirectory) / kRunSpecFile).string());
@@ -277,7 +353,13 @@ RunResult readRun(const std::string& runDirectory) {
               get("planner"),
               std::stoi(get("start")),
               std::stoi(get("repetition")),
-              std::stoi(get("seed"))};
+              std::stoi(get("seed")),
+              {}};
+    for (const auto& [k, v] : spec)
+        if (k == "params_digest")
+            r.spec.inputs.digest = v;
+        else if (k.rfind("input_files.", 0) == 0)
+            r.spec.inputs.files.emplace_back(k.substr(12), v);
 
     const auto exitFile = dir / kExitCodeFile;
     const bool hasExit = fs::exists(exitFile);
@@ -286,11 +368,15 @@ RunResult readRun(const std::string& runDirectory) {
     const auto summary = dir / "summary.json";
     if (fs::exists(summary)) {
         try {
-            for (auto& kv : parseFlatJson(readText(summary)))
-                if (!kLabelKeys.count(kv.first))
-                    r.metrics.push_back(std::move(kv));
+            for (auto& [key, value] : parseFlatJson(readText(summary))) {
+                if (key.rfind(kProvenancePrefix, 0) == 0)
+                    r.provenance.emplace_back(key.substr(kProvenancePrefix.size()), value);
+                else if (!kLabelKeys.count(key))
+                    r.metrics.emplace_back(key, value);
+            }
         } catch (const std::runtime_error&) {
             r.metrics.clear();
+            r.provenance.clear();
         }
     }
     if (!hasExit)
@@ -325,7 +411,9 @@ void writeResultsCsv(const std::vector<RunResult>& runs, const std::string& path
     out << "world,mode,planner,start,repetition,seed,status,exit_code,log";
     for (const auto& k : keys)
         out << ',' << k;
-    out << '\n';
+    for (const auto& column : kProvenanceColumns)
+        out << ',' << column.name;
+    out << ",params_digest\n";
     for (const auto& r : runs) {
         out << csvField(r.spec.world) << ',' << r.spec.mode << ',' << csvField(r.spec.planner)
             << ',' << r.spec.start << ',' << r.spec.repetition << ',' << r.spec.seed << ','
@@ -336,7 +424,9 @@ void writeResultsCsv(const std::vector<RunResult>& runs, const std::string& path
                                          [&k](const auto& kv) { return kv.first == k; });
             out << ',' << (it == r.metrics.end() ? "" : csvField(it->second));
         }
-        out << '\n';
+        for (const auto& column : kProvenanceColumns)
+            out << ',' << csvField(r.provenanceValue(column.key));
+        out << ',' << r.spec.inputs.digest << '\n';
     }
     if (!out)
         throw std::runtime_error("cannot write " + path);
@@ -492,16 +582,67 @@ std::vector<std::string> writePlots(const std::vector<RunResult>& runs,
     return written;
 }
 
+std::string provenanceMarkdown(const std::vector<RunResult>& runs) {
+    // Build description -> runs made by it, in first-seen order; the same for hosts.
+    std::vector<std::pair<std::string, int>> builds, hosts;
+    auto count = [](std::vector<std::pair<std::string, int>>& list, const std::string& key) {
+        auto it = std::find_if(list.begin(), list.end(),
+                               [&key](const auto& e) { return e.first == key; });
+        if (it == list.end())
+            list.emplace_back(key, 1);
+        else
+            ++it->second;
+    };
+    std::string first, last;
+    std::size_t unknown = 0;
+    for (const auto& r : runs) {
+        if (r.provenance.empty()) {
+            unknown += r.status == "ok";
+            continue;
+        }
+        count(builds, buildDescription(r));
+        count(hosts, r.provenanceValue("host"));
+        const std::string date = r.provenanceValue("date_utc");
+        if (!date.empty() && (first.empty() || date < first))
+            first = date;
+        last = std::max(last, date);
+    }
+    std::ostringstream out;
+    if (builds.size() > 1)
+        out << "**Mixed builds**: these runs were made by " << builds.size()
+            << " different builds (see the git_commit column of results.csv):\n\n";
+    for (const auto& [build, n] : builds)
+        out << (builds.size() > 1 ? "- " : "Made by ") << build << " (" << n << " run"
+            << (n == 1 ? "" : "s") << ")\n";
+    if (unknown > 0)
+        out << (builds.empty() ? "" : "\n") << unknown
+            << " ok runs record no build (made before daep recorded provenance).\n";
+    if (!hosts.empty()) {
+        out << "\nOn ";
+        for (std::size_t i = 0; i < hosts.size(); ++i)
+            out << (i ? ", " : "") << hosts[i].first << " (" << hosts[i].second << ")";
+        out << ", " << first << " to " << last << ". Aggregated by " << shortCommit() << ".\n";
+    }
+    return out.str();
+}
+
 std::size_t aggregateBenchmark(const std::string& benchmarkDirectory,
                                const std::vector<std::string>& plannerOrder) {
     const fs::path dir = fs::absolute(benchmarkDirectory).lexically_normal();
+    if (!fs::is_directory(dir))
+        throw InputError(benchmarkDirectory + ": no such folder");
     const auto runs = readRuns(dir.string());
+    if (runs.empty())
+        throw InputError(benchmarkDirectory + ": no runs in this folder (no runs/*/" +
+                         kRunSpecFile + ")");
     writeResultsCsv(runs, (dir / "results.csv").string());
     std::ofstream table(dir / "table.md");
     std::size_t ok = 0, failed = 0;
     for (const auto& r : runs)
         ok += r.status == "ok", failed += r.status == "failed";
-    table << "# Benchmark results\n\nMean ± std over worlds of the per-world mean of runs "
+    table << "# Benchmark results\n\n"
+          << provenanceMarkdown(runs)
+          << "\nMean ± std over worlds of the per-world mean of runs "
              "(paper Table I); best value in bold (highest C, lowest T, PL, PT, NOC). "
           << ok << " ok runs, " << failed << " failed, " << runs.size() - ok - failed
           << " pending.\n";

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -12,9 +13,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
+#include "daep/common/BuildInfo.h"
 #include "daep/eval/BenchmarkResults.h"
 
 extern char** environ;
@@ -184,6 +187,64 @@ private:
     Clock::time_point begin_ = Clock::now();
 };
 
+std::string fileText(const fs::path& path) {
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+/** `[section] key` -> value of an ini text (as config.ini: one `key = value` per line). */
+std::map<std::string, std::string> iniValues(const std::string& text) {
+    std::map<std::string, std::string> values;
+    std::istringstream in(text);
+    std::string line, section;
+    while (std::getline(in, line)) {
+        if (line.size() > 1 && line.front() == '[' && line.back() == ']') {
+            section = line;
+            continue;
+        }
+        const auto eq = line.find(" = ");
+        if (eq != std::string::npos)
+            values[section + " " + line.substr(0, eq)] = line.substr(eq + 3);
+    }
+    return values;
+}
+
+std::string describeParameterChanges(const std::string& before, const std::string& now) {
+    const auto old = iniValues(before);
+    const auto current = iniValues(now);
+    std::vector<std::string> changes;
+    for (const auto& [key, value] : current) {
+        const auto it = old.find(key);
+        if (it == old.end())
+            changes.push_back(key + " added (" + value + ")");
+        else if (it->second != value)
+            changes.push_back(key + ": " + it->second + " -> " + value);
+    }
+    for (const auto& [key, value] : old)
+        if (!current.count(key))
+            changes.push_back(key + " removed");
+    constexpr std::size_t kShown = 4;
+    std::string text;
+    for (std::size_t i = 0; i < changes.size() && i < kShown; ++i)
+        text += (i ? "; " : "") + changes[i];
+    if (changes.size() > kShown)
+        text += "; and " + std::to_string(changes.size() - kShown) + " more";
+    return text;
+}
+
+std::string describeFileChanges(const RunInputs& before, const RunInputs& now) {
+    std::string text;
+    for (const auto& [name, digest] : now.files) {
+        const auto it = std::find_if(before.files.begin(), before.files.end(),
+                                     [&name](const auto& f) { return f.first == name; });
+        if (it == before.files.end() || it->second != digest)
+            text += (text.empty() ? "" : ", ") + name;
+    }
+    return text.empty() ? "" : "world file " + text + " changed";
+}
+
 }  // namespace
 
 std::string shellQuote(const std::string& word) {
@@ -196,8 +257,11 @@ std::string shellQuote(const std::string& word) {
     return out + "'";
 }
 
-BenchmarkRunner::BenchmarkRunner(BenchmarkConfig config, RunnerOptions options)
-    : config_(std::move(config)), options_(std::move(options)) {
+BenchmarkRunner::BenchmarkRunner(BenchmarkConfig config, RunnerOptions options,
+                                 std::vector<RunSpec> runs)
+    : config_(std::move(config)), options_(std::move(options)), runs_(std::move(runs)) {
+    if (runs_.empty())
+        runs_ = config_.expand();
     options_.outDirectory = fs::absolute(options_.outDirectory).lexically_normal().string();
     options_.exploreBinary = fs::absolute(options_.exploreBinary).lexically_normal().string();
     if (options_.jobs < 1)
@@ -210,39 +274,73 @@ std::string BenchmarkRunner::runDirectory(const RunSpec& run) const {
 
 std::vector<std::string> BenchmarkRunner::arguments(const RunSpec& run) const {
     std::vector<std::string> args{config_.experiment};
-    auto set = [&args](const std::string& key, const std::string& value) {
-        args.push_back("--set");
-        args.push_back(key + "=" + value);
-    };
-    for (const auto& [key, value] : config_.sets)
-        set(key, value);
-    set("experiment.world", run.world);
-    set("experiment.mode", run.mode);
-    set("experiment.planner", run.planner);
-    set("experiment.start", std::to_string(run.start));
-    set("experiment.seed", std::to_string(run.seed));
+    for (const auto& assignment : config_.runOverrides(run))
+        args.insert(args.end(), {"--set", assignment});
     args.insert(args.end(), {"--out", runDirectory(run), "--quiet"});
     return args;
 }
 
 bool BenchmarkRunner::isDone(const RunSpec& run) const {
     const fs::path dir = runDirectory(run);
+    if (!changeSinceLastRun(run).empty())
+        return false;
     const int code = readExitCode(dir);
     if (code == 0)
         return fs::exists(dir / "summary.json");
     return code > 0 && code != kInterruptedExit && !options_.retryFailed;
 }
 
+std::string BenchmarkRunner::changeSinceLastRun(const RunSpec& run) const {
+    const fs::path dir = runDirectory(run);
+    if (run.inputs.digest.empty() || !fs::exists(dir / kRunSpecFile))
+        return "";
+    RunInputs before;
+    try {
+        before = readRun(dir.string()).spec.inputs;
+    } catch (const std::exception&) {
+        return "its run.json is unreadable";
+    }
+    if (before.digest == run.inputs.digest)
+        return "";
+    if (before.digest.empty())
+        return "it ran without a parameter digest (an older daep-benchmark)";
+    const fs::path config = dir / "config.ini";
+    std::string what =
+        fs::exists(config) ? describeParameterChanges(fileText(config), run.inputs.parameters) : "";
+    const std::string files = describeFileChanges(before, run.inputs);
+    if (!files.empty())
+        what += (what.empty() ? "" : "; ") + files;
+    return what.empty() ? "its parameters changed" : what;
+}
+
+void BenchmarkRunner::reportResumeDecisions(std::ostream& out) const {
+    const std::string thisBuild = buildInfo().version + " " + shortCommit();
+    for (const auto& run : runs_) {
+        const std::string change = changeSinceLastRun(run);
+        if (!change.empty()) {
+            out << "re-run  " << run.id() << ": " << change << "\n";
+            continue;
+        }
+        if (!isDone(run))
+            continue;
+        const std::string madeBy = readRun(runDirectory(run)).build();
+        if (!madeBy.empty() && madeBy != thisBuild)
+            out << "kept    " << run.id() << ": parameters unchanged, made by build " << madeBy
+                << " (this is " << thisBuild << ")\n";
+    }
+}
+
 std::vector<RunSpec> BenchmarkRunner::pendingRuns() const {
     std::vector<RunSpec> pending;
-    for (const auto& run : config_.expand())
+    for (const auto& run : runs_)
         if (!isDone(run))
             pending.push_back(run);
     return pending;
 }
 
 RunnerReport BenchmarkRunner::run(std::ostream& progressOut) {
-    const auto all = config_.expand();
+    const auto& all = runs_;
+    reportResumeDecisions(progressOut);
     const auto pending = pendingRuns();
     RunnerReport report;
     report.total = all.size();
@@ -354,6 +452,9 @@ std::size_t BenchmarkRunner::emitJobs(const std::string& path) const {
     for (const auto& spec : pendingRuns()) {
         const fs::path dir = runDirectory(spec);
         writeRunSpec(dir.string(), spec);
+        // Results made with other inputs must not pass for this run's before the job runs.
+        fs::remove(dir / kExitCodeFile);
+        fs::remove(dir / "summary.json");
         const std::string d = shellQuote(dir.string());
         out << "mkdir -p " << d << " && rm -f " << shellQuote((dir / kExitCodeFile).string()) << ' '
             << shellQuote((dir / "summary.json").string()) << " && "

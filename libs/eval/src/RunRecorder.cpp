@@ -25,6 +25,28 @@ void closeFile(std::FILE*& f) {
 
 }  // namespace
 
+std::string provenanceJson(const RunProvenance& run, const BuildInfo& build) {
+    const auto field = [](const char* key, const std::string& json) {
+        return std::string("    \"") + key + "\": " + json + ",\n";
+    };
+    std::string libraries;
+    for (const auto& [name, version] : build.libraries)
+        libraries +=
+            (libraries.empty() ? "" : ", ") + jsonString(name) + ": " + jsonString(version);
+    std::string out = "{\n";
+    out += field("version", jsonString(build.version));
+    out += field("git_commit", jsonString(build.gitCommit));
+    out += field("git_dirty", build.gitDirty ? "true" : "false");
+    out += field("build_type", jsonString(build.buildType));
+    out += field("compiler", jsonString(build.compiler));
+    out += field("sanitizers", jsonString(build.sanitizers));
+    out += field("libraries", "{" + libraries + "}");
+    out += field("host", jsonString(run.host));
+    out += field("date_utc", jsonString(run.dateUtc));
+    out += "    \"command_line\": " + jsonString(run.commandLine) + "\n  }";
+    return out;
+}
+
 std::string jsonString(const std::string& s) {
     std::string out = "\"";
     for (const char c : s) {
@@ -160,8 +182,8 @@ void RunRecorder::writeSummary(const RunSummary& s) const {
     std::fprintf(f, "  \"known_volume_m3\": %.4f,\n", s.knownVolume);
     std::fprintf(f, "  \"box_volume_m3\": %.4f,\n", s.boxVolume);
     std::fprintf(f, "  \"exploration_start_s\": %.3f,\n", s.explorationStart);
-    std::fprintf(f, "  \"wall_time_s\": %.3f\n", s.wallTime);
-    std::fprintf(f, "}\n");
+    std::fprintf(f, "  \"wall_time_s\": %.3f,\n", s.wallTime);
+    std::fprintf(f, "  \"provenance\": %s\n}\n", provenanceJson(s.provenance).c_str());
     std::fclose(f);
 }
 

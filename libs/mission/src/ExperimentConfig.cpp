@@ -1,7 +1,5 @@
 #include "daep/mission/ExperimentConfig.h"
 
-#include <mrpt/config/CConfigFileMemory.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +9,7 @@
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/common/IniText.h"
+#include "daep/common/TracedConfig.h"
 
 namespace daep::mission {
 namespace {
@@ -34,7 +33,7 @@ std::vector<std::string> defaultFiles() {
 }  // namespace
 
 struct ExperimentConfig::Impl {
-    mrpt::config::CConfigFileMemory memory;
+    TracedConfig memory;
 };
 
 ExperimentConfig::ExperimentConfig() : impl_(std::make_unique<Impl>()) {}
@@ -52,7 +51,7 @@ const mrpt::config::CConfigFileBase& ExperimentConfig::config() const {
 }
 
 void ExperimentConfig::set(const std::string& section, const std::string& key,
-                           const std::string& value) {
+                           const std::string& value, const std::string& where) {
     auto sec = std::find_if(sections_.begin(), sections_.end(),
                             [&](const Section& s) { return s.name == section; });
     if (sec == sections_.end()) {
@@ -66,6 +65,7 @@ void ExperimentConfig::set(const std::string& section, const std::string& key,
     else
         entry->second = value;
     impl_->memory.write(section, key, value);
+    impl_->memory.setOrigin(section, key, where);
 }
 
 ExperimentConfig ExperimentConfig::fromFile(const std::string& path,
@@ -85,7 +85,7 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
             if (std::count(keys.begin(), keys.end(), l.key))
                 throw InputError(path + ":" + std::to_string(l.line) + ": [" + l.section + "] " +
                                  l.key + " is already defined by another defaults file");
-            cfg.set(l.section, l.key, l.value);
+            cfg.set(l.section, l.key, l.value, path + ":" + std::to_string(l.line));
             keys.push_back(l.key);
         }
     }
@@ -114,8 +114,9 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
     };
     std::vector<std::string> given;
     for (const auto& l : parseIniText(text, source).entries) {
-        checkKnown(source + ":" + std::to_string(l.line) + ": ", l.section, l.key);
-        cfg.set(l.section, l.key, l.value);
+        const std::string where = source + ":" + std::to_string(l.line);
+        checkKnown(where + ": ", l.section, l.key);
+        cfg.set(l.section, l.key, l.value, where);
         if (l.section == "experiment")
             given.push_back(l.key);
     }
@@ -127,7 +128,7 @@ ExperimentConfig ExperimentConfig::fromText(const std::string& text, const std::
         const std::string section = trimBlanks(o.substr(0, dot));
         const std::string key = trimBlanks(o.substr(dot + 1, eq - dot - 1));
         checkKnown("--set " + o + ": ", section, key);
-        cfg.set(section, key, trimBlanks(o.substr(eq + 1)));
+        cfg.set(section, key, trimBlanks(o.substr(eq + 1)), "--set " + section + "." + key);
         if (section == "experiment")
             given.push_back(key);
     }

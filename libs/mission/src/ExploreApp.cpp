@@ -82,6 +82,27 @@ void printSummary(const eval::RunSummary& s, const std::string& dir) {
               << (s.wallTime > 0 ? (s.explorationTime / s.wallTime) : 0.0) << " x real time)\n";
 }
 
+/** Every file a run writes to its output folder. */
+const char* const kRunOutputs[] = {
+    "summary.json",   "timeseries.csv",    "trajectory.csv", "plans.csv",
+    "collisions.csv", "timing.json",       "config.ini",     "map.bt",
+    "people.csv",     "run.rawlog",        "scene.3Dscene",  "scene_perspective.png",
+    "scene_top.png",  "trajectory_tum.txt"};
+
+/**
+ * A reused output folder must not mix runs: the files an earlier run wrote there go before this
+ * one starts (other files in the folder, such as daep-benchmark's run.log, stay).
+ */
+void removeEarlierOutputs(const std::string& dir) {
+    for (const char* file : kRunOutputs) {
+        std::error_code ec;
+        std::filesystem::remove(std::filesystem::path(dir) / file, ec);
+        if (ec)
+            throw std::runtime_error(std::string("cannot remove the earlier ") + file + " in " +
+                                     dir + ": " + ec.message());
+    }
+}
+
 }  // namespace
 
 std::string ExploreApp::usage() {
@@ -95,6 +116,7 @@ std::string ExploreApp::usage() {
 }
 
 bool ExploreApp::initialize(int argc, const char* const* argv) {
+    invocation_ = runProvenance(argc, argv);
     bool listWorlds = false, listPlanners = false;
     std::vector<std::string> config;
     CommandLine cli("daep-explore", usage());
@@ -122,10 +144,12 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
 
 int ExploreApp::run() {
     return runApp([&] {
-        const ExperimentConfig config = ExperimentConfig::fromFile(configPath_, overrides_);
+        ExperimentConfig config = ExperimentConfig::fromFile(configPath_, overrides_);
+        config.setInvocation(invocation_);
         if (!quiet_)
             std::cout << "# Effective parameters (" << configPath_ << ")\n" << config.dump();
         std::ostream* log = quiet_ ? nullptr : &std::cout;
+        removeEarlierOutputs(outputDir_);
         if (RawlogMission::selectedBy(config)) {
             RawlogMission replay(config, outputDir_, log);
             std::ofstream(outputDir_ + "/config.ini") << config.dump();

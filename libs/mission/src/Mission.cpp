@@ -373,6 +373,7 @@ struct Mission::Impl {
                     {"planner", settings.plannerName},
                     {"start", std::to_string(settings.start)},
                     {"seed", std::to_string(settings.seed)}};
+        s.provenance = invocation;
         return s;
     }
 
@@ -413,11 +414,13 @@ struct Mission::Impl {
     int abortedPaths = 0;
     bool finished = false;
     std::string endReason;
+    RunProvenance invocation;
 };
 
 Mission::Mission(const ExperimentConfig& config, const std::string& outputDir, std::ostream* log)
     : impl_(std::make_unique<Impl>(config, outputDir, log)) {
     impl_->stopFlag = &stopRequested_;
+    impl_->invocation = config.invocation();
 }
 
 Mission::~Mission() = default;

@@ -7,19 +7,16 @@
 #include "daep/mission/ExperimentConfig.h"
 
 namespace daep::mission {
-namespace {
 
-/** A world given as a relative path is looked up next to the experiment file first. */
-std::string worldPath(const Settings& s, const std::string& experimentSource) {
+std::string resolveExperimentWorld(const std::string& worldName,
+                                   const std::string& experimentSource) {
     const std::filesystem::path besideConfig =
-        std::filesystem::path(experimentSource).parent_path() / s.worldName;
-    if (std::filesystem::path(s.worldName).is_relative() &&
+        std::filesystem::path(experimentSource).parent_path() / worldName;
+    if (std::filesystem::path(worldName).is_relative() &&
         std::filesystem::is_regular_file(besideConfig))
         return besideConfig.string();
-    return world::resolveWorldPath(s.worldName);
+    return world::resolveWorldPath(worldName);
 }
-
-}  // namespace
 
 Settings loadSettings(const ExperimentConfig& experiment) {
     const ConfigReader r(experiment.config(), "experiment", experiment.source());
@@ -27,7 +24,7 @@ Settings loadSettings(const ExperimentConfig& experiment) {
     s.worldName = r.requireString("world");
     s.mode = r.requireString("mode");
     if (s.mode != "static" && s.mode != "dynamic")
-        throw InputError(experiment.source() + ": [experiment] mode: '" + s.mode +
+        throw InputError(r.where("mode") + ": [experiment] mode: '" + s.mode +
                          "' is not one of static, dynamic");
     s.plannerName = r.requireString("planner");
     s.start = r.requireInt("start");
@@ -38,28 +35,30 @@ Settings loadSettings(const ExperimentConfig& experiment) {
         if (used != seedText.size())
             throw std::invalid_argument("trailing");
     } catch (const std::exception&) {
-        throw InputError(experiment.source() + ": [experiment] seed: '" + seedText +
+        throw InputError(r.where("seed") + ": [experiment] seed: '" + seedText +
                          "' is not a non-negative integer");
     }
     s.maxTime = r.requireDouble("max_time_s");
     if (s.maxTime <= 0)
-        throw InputError(experiment.source() + ": [experiment] max_time_s: must be > 0");
+        throw InputError(r.where("max_time_s") + ": [experiment] max_time_s: must be > 0");
     s.planningTime = r.requireString("planning_time");
     if (s.planningTime != "measured" && s.planningTime != "fixed")
-        throw InputError(experiment.source() + ": [experiment] planning_time: '" + s.planningTime +
-                         "' is not one of measured, fixed");
+        throw InputError(r.where("planning_time") + ": [experiment] planning_time: '" +
+                         s.planningTime + "' is not one of measured, fixed");
     s.planningFixed = r.requireDouble("planning_fixed_s");
     s.climb = r.requireDouble("climb_m");
     s.sampleEvery = r.requireDouble("timeseries_every_s");
     if (s.sampleEvery <= 0)
-        throw InputError("[experiment] timeseries_every_s: must be > 0");
+        throw InputError(r.where("timeseries_every_s") +
+                         ": [experiment] timeseries_every_s: must be > 0");
     s.progressEvery = r.requireDouble("progress_every_s");
     s.maxFailedPlans = r.requireInt("max_failed_plans");
     return s;
 }
 
 world::WorldSpec loadWorld(const Settings& s, const std::string& experimentSource) {
-    world::WorldSpec w = world::loadWorldFile(worldPath(s, experimentSource));
+    world::WorldSpec w =
+        world::loadWorldFile(resolveExperimentWorld(s.worldName, experimentSource));
     if (s.mode == "static")
         w.people.clear();
     if (s.start < 0 || s.start >= static_cast<int>(w.starts.size()))

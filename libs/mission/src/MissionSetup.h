@@ -20,6 +20,10 @@ struct Settings {
 
 Settings loadSettings(const ExperimentConfig& experiment);
 
+/** A world name or path -> its file; a relative path is looked up next to the experiment first. */
+std::string resolveExperimentWorld(const std::string& worldName,
+                                   const std::string& experimentSource);
+
 /** The experiment's world, people removed in static mode, start index checked. */
 world::WorldSpec loadWorld(const Settings& s, const std::string& experimentSource);
 

@@ -285,6 +285,7 @@ struct RawlogMission::Impl {
                     {"world", worldName},
                     {"planner", settings.plannerName},
                     {"seed", std::to_string(settings.seed)}};
+        s.provenance = invocation;
         return s;
     }
 
@@ -338,11 +339,14 @@ struct RawlogMission::Impl {
     std::size_t frameCount = 0;
     int iterations = 0;
     std::string endReason;
+    RunProvenance invocation;
 };
 
 RawlogMission::RawlogMission(const ExperimentConfig& config, const std::string& outputDir,
                              std::ostream* log)
-    : impl_(std::make_unique<Impl>(config, outputDir, log)) {}
+    : impl_(std::make_unique<Impl>(config, outputDir, log)) {
+    impl_->invocation = config.invocation();
+}
 
 RawlogMission::~RawlogMission() = default;
 

@@ -32,6 +32,12 @@ public:
     /** Angles are written as `<key>_deg` in the ini; this returns radians. */
     double requireAngleDeg(const std::string& keyDeg) const;
 
+    /**
+     * Where the key's value was given, for error messages: "file:line" or "--set section.key"
+     * when the config is a TracedConfig that knows, else the source given to the constructor.
+     */
+    std::string where(const std::string& key) const;
+
     const std::string& section() const { return section_; }
     const mrpt::config::CConfigFileBase& config() const { return cfg_; }
 

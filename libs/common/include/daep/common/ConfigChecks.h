@@ -13,7 +13,7 @@ namespace daep {
 [[noreturn]] inline void failRange(const ConfigReader& r, const std::string& key, double value,
                                    const std::string& what) {
     std::ostringstream os;
-    os << "config: [" << r.section() << "] " << key << ": " << value << " " << what;
+    os << r.where(key) << ": [" << r.section() << "] " << key << ": " << value << " " << what;
     throw InputError(os.str());
 }
 
@@ -59,7 +59,8 @@ inline std::string requireOneOf(const ConfigReader& r, const std::string& key,
     std::string list;
     for (std::size_t i = 0; i < allowed.size(); ++i)
         list += (i == 0 ? "" : i + 1 == allowed.size() ? " or " : ", ") + allowed[i];
-    throw InputError("config: [" + r.section() + "] " + key + ": '" + v + "' must be " + list);
+    throw InputError(r.where(key) + ": [" + r.section() + "] " + key + ": '" + v + "' must be " +
+                     list);
 }
 
 }  // namespace daep

@@ -1,10 +1,21 @@
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace daep::eval {
+
+/** What a run's outcome depends on; filled by daep::mission::checkBenchmark. */
+struct RunInputs {
+    std::string
+        parameters;  ///< the effective parameters as ini text (as daep-explore's config.ini)
+    /** The world's files (the world file, then the files it references): name and SHA-256. */
+    std::vector<std::pair<std::string, std::string>> files;
+    /** SHA-256 over the parameters and the files' digests; empty when not checked. */
+    std::string digest;
+};
 
 /** One mission of the experiment matrix. */
 struct RunSpec {
@@ -14,6 +25,7 @@ struct RunSpec {
     int start = 0;
     int repetition = 0;
     int seed = 0;
+    RunInputs inputs;
 
     /** Directory name under OUT/runs: <world>_<mode>_<planner>_s<start>_r<rep>. */
     std::string id() const;
@@ -34,9 +46,17 @@ struct BenchmarkConfig {
     std::string experiment;  ///< absolute path of the daep-explore experiment ini
     /** `section.key` -> value, from [set] and non-benchmark --set, in order. */
     std::vector<std::pair<std::string, std::string>> sets;
+    /** Where each [benchmark] key ("planners") and [set] key ("experiment.max_time_s") was given:
+     * "file:line" or "--set section.key". */
+    std::map<std::string, std::string> origins;
 
     /** planners x worlds x modes x starts x repetitions, seed = seed + repetition. */
     std::vector<RunSpec> expand() const;
+    /** The `section.key=value` overrides daep-explore gets for one run: [set], then the matrix's.
+     */
+    std::vector<std::string> runOverrides(const RunSpec& run) const;
+    /** origins[key], or the config's path when unknown. */
+    std::string where(const std::string& key) const;
 };
 
 /**

@@ -17,8 +17,14 @@ struct RunResult {
     std::string directory;
     /** summary.json values by key (numbers and booleans as text), in file order. */
     std::vector<std::pair<std::string, std::string>> metrics;
+    /** summary.json's "provenance" block, flattened ("git_commit", "libraries.MRPT", ...). */
+    std::vector<std::pair<std::string, std::string>> provenance;
 
     double metric(const std::string& key, double fallback = 0.0) const;
+    /** A provenance value as text; "" when absent. */
+    std::string provenanceValue(const std::string& key) const;
+    /** "VERSION COMMIT7[-dirty]" of the daep-explore that made the run; "" when not recorded. */
+    std::string build() const;
 };
 
 /** Per-run files written by the runner next to daep-explore's outputs. */
@@ -26,9 +32,14 @@ inline constexpr const char* kRunSpecFile = "run.json";
 inline constexpr const char* kExitCodeFile = "exit_code";
 inline constexpr const char* kRunLogFile = "run.log";
 
-/** Parses a flat JSON object (strings, numbers, booleans) into key/value text pairs. */
+/**
+ * Parses a JSON object into key/value text pairs, in file order: numbers as written, booleans
+ * as true/false; members of nested objects get dotted keys ("provenance.git_commit"). Throws
+ * std::runtime_error on malformed JSON.
+ */
 std::vector<std::pair<std::string, std::string>> parseFlatJson(const std::string& text);
 
+/** run.json: the run's identification, its parameter digest and the build that launched it. */
 void writeRunSpec(const std::string& runDirectory, const RunSpec& spec);
 /** Reads a run directory (run.json, exit_code, summary.json); throws if run.json is unreadable. */
 RunResult readRun(const std::string& runDirectory);
@@ -71,8 +82,17 @@ std::string perWorldMarkdown(const std::vector<RunResult>& runs, const std::stri
 std::vector<std::string> writePlots(const std::vector<RunResult>& runs,
                                     const std::string& plotDirectory);
 
+/** "daep VERSION COMMIT (build type, compiler; libraries)" of the build that made a run. */
+std::string buildDescription(const RunResult& run);
+
+/**
+ * table.md's provenance header: the builds that made the runs (flagged when there are several),
+ * the hosts, and the span of dates.
+ */
+std::string provenanceMarkdown(const std::vector<RunResult>& runs);
+
 /** results.csv, table.md and plots/ in DIR from the run directories in DIR/runs; returns the number
- * of runs read. */
+ * of runs read. Throws InputError when DIR does not exist or holds no runs. */
 std::size_t aggregateBenchmark(const std::string& benchmarkDirectory,
                                const std::vector<std::string>& plannerOrder = {});
 

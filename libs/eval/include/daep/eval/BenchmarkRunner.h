@@ -30,19 +30,26 @@ struct RunnerReport {
 
 /**
  * Runs the matrix as separate daep-explore processes, `jobs` at a time. A run whose summary.json
- * exists and whose exit code was 0 is skipped, a failed one re-run only with retryFailed. SIGINT
+ * exists and whose exit code was 0 is skipped, a failed one re-run only with retryFailed; either
+ * runs again when its inputs' digest (RunSpec::inputs) differs from the one it ran with. SIGINT
  * stops launching and forwards the interrupt to the running missions (a second one kills them);
  * interrupted runs stay pending for the next invocation.
  */
 class BenchmarkRunner {
 public:
-    BenchmarkRunner(BenchmarkConfig config, RunnerOptions options);
+    /** `runs`: the checked matrix (with digests); empty: config.expand(), without digests. */
+    BenchmarkRunner(BenchmarkConfig config, RunnerOptions options, std::vector<RunSpec> runs = {});
 
     /** The daep-explore arguments (without the binary) of one run. */
     std::vector<std::string> arguments(const RunSpec& run) const;
     std::string runDirectory(const RunSpec& run) const;
     /** Runs still to do, by the resume rule. */
     std::vector<RunSpec> pendingRuns() const;
+    /**
+     * Why a run that ran before has to run again: what changed in its parameters or world files
+     * since ("[experiment] max_time_s: 30 -> 60"); "" when nothing did or it never ran.
+     */
+    std::string changeSinceLastRun(const RunSpec& run) const;
 
     RunnerReport run(std::ostream& progress);
 
@@ -51,9 +58,12 @@ public:
 
 private:
     bool isDone(const RunSpec& run) const;
+    /** One line per re-run (what changed) and per kept run made by another build. */
+    void reportResumeDecisions(std::ostream& out) const;
 
     BenchmarkConfig config_;
     RunnerOptions options_;
+    std::vector<RunSpec> runs_;
 };
 
 /** Quotes a word for POSIX sh (single quotes, unless it is plainly safe). */

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "daep/common/BuildInfo.h"
 #include "daep/common/Types.h"
 
 namespace daep::eval {
@@ -43,6 +44,8 @@ struct RunSummary {
     std::string endReason;
     /** Run identification (world, mode, planner, start, seed): written as strings. */
     std::map<std::string, std::string> labels;
+    /** Host, date and command line of the run; with buildInfo() it makes the "provenance" block. */
+    RunProvenance provenance;
 };
 
 /** One planner call on recorded data (source = rawlog): where from, and what it would fly. */
@@ -117,6 +120,13 @@ private:
     std::vector<double> wallPlanTimes_;
     std::vector<Collision> collisions_;
 };
+
+/**
+ * summary.json's "provenance" object (indented for its place there): the build (version, git
+ * commit and dirty flag, build type, compiler, sanitizers, library versions) and the run (host,
+ * UTC date, command line).
+ */
+std::string provenanceJson(const RunProvenance& run, const BuildInfo& build = buildInfo());
 
 /** Writes a JSON string literal with escapes. */
 std::string jsonString(const std::string& s);

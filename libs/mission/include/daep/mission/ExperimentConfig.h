@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "daep/common/BuildInfo.h"
+
 namespace mrpt::config {
 class CConfigFileBase;
 }
@@ -40,17 +42,24 @@ public:
     /** The merged parameters as ini text, in defaults.ini order. */
     std::string dump() const;
 
+    /** How the run was started (host, date, command line), for the outputs' provenance. */
+    const RunProvenance& invocation() const { return invocation_; }
+    void setInvocation(RunProvenance invocation) { invocation_ = std::move(invocation); }
+
     /** [experiment] keys every experiment file must set. */
     static const std::vector<std::string>& requiredExperimentKeys();
 
 private:
     ExperimentConfig();
-    void set(const std::string& section, const std::string& key, const std::string& value);
+    /** `where`: "file:line" or "--set section.key", named by errors about the value. */
+    void set(const std::string& section, const std::string& key, const std::string& value,
+             const std::string& where);
 
     struct Impl;
     std::unique_ptr<Impl> impl_;
     std::vector<Section> sections_;
     std::string source_;
+    RunProvenance invocation_;
 };
 
 }  // namespace daep::mission

@@ -28,6 +28,7 @@ private:
     std::vector<std::string> overrides_;
     std::string outputDir_;
     bool quiet_ = false;
+    RunProvenance invocation_;
     eval::RunSummary summary_;
 };
 
