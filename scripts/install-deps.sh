@@ -9,6 +9,7 @@ packages=(
   libembree-dev libassimp-dev libnanoflann-dev libtinyxml2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libopengl0
+  libcairo2-dev fonts-dejavu-core
 )
 
 missing=()
