@@ -118,7 +118,7 @@ void drawLegend(cairo_t* cr, const Overlay& o) {
         colorBar(cr, o.colorBar, x + kPad, row, w);
 }
 
-void drawScaleBar(cairo_t* cr, double metresPerPixel, int width, int height) {
+void drawScaleBar(cairo_t* cr, double metresPerPixel, double width, double height) {
     const double metres = scaleBarLength(0.2 * width * metresPerPixel);
     const double len = metres / metresPerPixel;
     char text[32];
@@ -170,10 +170,13 @@ void writeAnnotatedPng(const unsigned char* bgr, int width, int height, std::siz
     }
     cairo_surface_mark_dirty(surface.get());
     ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+    // Laid out for about 1280 x 960; smaller or larger images scale the overlay with them.
+    const double scale = std::clamp(std::min(width / 1280.0, height / 960.0), 0.5, 2.0);
+    cairo_scale(cr.get(), scale, scale);
     if (!overlay.legend.empty() || !overlay.title.empty() || !overlay.colorBar.stops.empty())
         drawLegend(cr.get(), overlay);
     if (overlay.metresPerPixel > 0.0)
-        drawScaleBar(cr.get(), overlay.metresPerPixel, width, height);
+        drawScaleBar(cr.get(), overlay.metresPerPixel * scale, width / scale, height / scale);
     cairo_surface_flush(surface.get());
     const cairo_status_t status = cairo_surface_write_to_png(surface.get(), path.c_str());
     if (status != CAIRO_STATUS_SUCCESS)

@@ -90,7 +90,7 @@ gl::CSetOfLines::Ptr makeTrajectory(const std::vector<Eigen::Vector3d>& points) 
 
 gl::CSetOfLines::Ptr makeTree(const std::vector<planning::TreeEdge>& edges) {
     // Thin and light: context for the plan, not the subject of the picture.
-    auto lines = makeLines("tree", toColor(kTreeColor, 150), 1.0f);
+    auto lines = makeLines("tree", toColor(kTreeColor, 110), 1.0f);
     for (const auto& e : edges)
         lines->appendLine(toPoint(e.from), toPoint(e.to));
     return lines;

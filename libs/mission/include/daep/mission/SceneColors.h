@@ -19,6 +19,6 @@ inline constexpr SceneColor kPersonColor{235, 0, 235};      ///< magenta
 inline constexpr SceneColor kPredictionColor{120, 0, 170};  ///< violet
 inline constexpr SceneColor kTrajectoryColor{0, 0, 0};
 inline constexpr SceneColor kDroneColor{255, 255, 255};
-inline constexpr SceneColor kTreeColor{150, 150, 150};
+inline constexpr SceneColor kTreeColor{120, 120, 120};
 
 }  // namespace daep::mission
