@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libssl-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libopengl0
+  libcairo2-dev fonts-dejavu-core
 )
 
 missing=()

@@ -179,7 +179,7 @@ void drawStarts(cv::Mat& img, const WorldSpec& w, const Projection& proj) {
         const cv::Point p = proj.toPixel(w.starts[i].x(), w.starts[i].y());
         cv::circle(img, p, 10, cv::Scalar(255, 255, 255), cv::FILLED, cv::LINE_AA);
         cv::circle(img, p, 10, kStartColour, 2, cv::LINE_AA);
-        const std::string label = std::to_string(i + 1);
+        const std::string label = std::to_string(i);  // 0-4, as experiment.start
         int base = 0;
         const cv::Size ts = cv::getTextSize(label, kFont, 0.45, 1, &base);
         cv::putText(img, label, p + cv::Point(-ts.width / 2, ts.height / 2), kFont, 0.45,

@@ -82,6 +82,24 @@ TEST(BenchmarkApp, SmokeBenchmarkRunsAggregatesAndResumes) {
          {"collisions_aep_crosswalks_dynamic.png", "collisions_rhnbvp_crosswalks_dynamic.png",
           "collisions_daep_crosswalks_dynamic.png"})
         EXPECT_EQ(pngSize(out / "plots" / png), std::make_pair(900, 360)) << png;
+    // Every plot also as SVG and PDF.
+    for (const char* stem : {"coverage_crosswalks_dynamic", "collisions_daep_crosswalks_dynamic"}) {
+        EXPECT_EQ(readText(out / "plots" / (std::string(stem) + ".svg")).rfind("<?xml", 0), 0u);
+        EXPECT_EQ(readText(out / "plots" / (std::string(stem) + ".pdf")).rfind("%PDF-", 0), 0u);
+    }
+    // The paper's Fig. 4 layout: coverage with bands over a collision timeline (4 runs, 4 rows).
+    EXPECT_EQ(pngSize(out / "plots/fig4_crosswalks_dynamic.png"),
+              std::make_pair(900, 34 + 440 + 110 + 4 * 16));
+    EXPECT_EQ(readText(out / "plots/fig4_crosswalks_dynamic.pdf").rfind("%PDF-", 0), 0u);
+    const std::string fig4 = readText(out / "plots/fig4_crosswalks_dynamic.svg");
+    for (const char* text : {">crosswalks (dynamic)</text>", ">Coverage over time</text>",
+                             ">Collision episodes</text>", ">DAEP (1 run)</text>",
+                             ">RH-NBVP (1 run)</text>", ">time [s]</text>"})
+        EXPECT_NE(fig4.find(text), std::string::npos) << text;
+    for (const char* planner : {"RH-NBVP", "AEP", "DEP", "DAEP"}) {
+        const std::string row = std::string(">") + planner + " s0 r0: ";
+        EXPECT_NE(fig4.find(row), std::string::npos) << row;
+    }
 
     // Second invocation: everything is done, nothing runs again.
     const auto before = summaryTime(out, "crosswalks_dynamic_rhnbvp_s0_r0");

@@ -221,3 +221,48 @@ TEST(BenchmarkResults, AggregateWritesResultsTableAndPlots) {
     EXPECT_GT(cv::countNonZero(orange), 100);
     fs::remove_all(root);
 }
+
+namespace {
+
+/** x and width of every <rect> filled with `fill` in an SVG. */
+std::vector<std::pair<double, double>> rectsFilled(const std::string& svg,
+                                                   const std::string& fill) {
+    std::vector<std::pair<double, double>> out;
+    const std::string mark = "fill=\"" + fill + "\"/>";
+    for (auto at = svg.find(mark); at != std::string::npos; at = svg.find(mark, at + 1)) {
+        const auto rect = svg.rfind("<rect ", at);
+        auto value = [&](const std::string& key) {
+            const auto k = svg.find(key + "=\"", rect);
+            return std::stod(svg.substr(k + key.size() + 2));
+        };
+        out.emplace_back(value("x"), value("width"));
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(BenchmarkResults, Fig4PutsCollisionEpisodesOnTheExplorationClock) {
+    const auto root = tempDir("fig4");
+    const RunSpec spec{"wa", "dynamic", "aep", 0, 0, 1};
+    writeRun(root, spec, 0, 80, 10, 2);
+    const auto dir = root / "runs" / spec.id();
+    std::ofstream(dir / "summary.json") << "{\"coverage_percent\": 80, \"exploration_time_s\": 10, "
+                                           "\"exploration_start_s\": 5.0, \"collisions\": 2}\n";
+    // Spawn clock: 6-7 s and 14 s until the end (-1) are 1-2 s and 9-10 s of exploration.
+    std::ofstream(dir / "collisions.csv") << "person,start_s,end_s,tracked\n0,6.0,7.0,-1\n"
+                                             "-1,14.0,-1.000,-1\n";
+    const auto written = writePlots(readRuns(root.string()), (root / "plots").string());
+    EXPECT_EQ(written.size(), 9u);  // coverage, fig4, collisions: png, svg, pdf each
+    const std::string svg = readText(root / "plots" / "fig4_wa_dynamic.svg");
+    EXPECT_NE(svg.find(">AEP s0 r0: 2</text>"), std::string::npos);
+    EXPECT_NE(svg.find(">static geometry</text>"), std::string::npos);
+    const auto person = rectsFilled(svg, "#1f77b4");  // the planner's colour
+    const auto statics = rectsFilled(svg, "#1e1e1e");
+    ASSERT_EQ(person.size(), 1u);
+    ASSERT_EQ(statics.size(), 2u);                // the bar and the legend swatch
+    const double secondWidth = person[0].second;  // 1 s
+    EXPECT_NEAR(statics[0].second, secondWidth, 0.05);
+    EXPECT_NEAR(statics[0].first - person[0].first, 8 * secondWidth, 0.05);
+    fs::remove_all(root);
+}

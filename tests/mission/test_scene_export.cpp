@@ -82,6 +82,22 @@ TEST_F(SceneExport, PngsHaveTheConfiguredSizeAndContent) {
         EXPECT_EQ(image.getHeight(), 240u) << path;
         EXPECT_GT(distinctColours(image), 20u) << path;
     }
+    // The top view shows the walker in the people's magenta and the flown trajectory in black
+    // (drawn over the voxels); no voxel takes either colour.
+    mrpt::img::CImage image;
+    ASSERT_TRUE(image.loadFromFile(top.string()));
+    std::size_t magenta = 0, black = 0;
+    for (std::size_t y = 0; y < image.getHeight(); ++y)
+        for (std::size_t x = 0; x < image.getWidth(); ++x) {
+            const bool overlay = x < 135 && (y < 110 || y > 212);  // legend, scale bar
+            if (overlay)
+                continue;
+            const auto* p = image.ptr<std::uint8_t>(x, y);  // B, G, R
+            magenta += p[2] > 120 && p[0] > 120 && p[1] < 60;
+            black += p[0] < 30 && p[1] < 30 && p[2] < 30;
+        }
+    EXPECT_GT(magenta, 10u);
+    EXPECT_GT(black, 30u);
 }
 
 }  // namespace

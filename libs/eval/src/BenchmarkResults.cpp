@@ -14,6 +14,8 @@
 
 #include "daep/common/BuildInfo.h"
 #include "daep/common/Error.h"
+#include "BenchmarkFigures.h"
+#include "RunSeries.h"
 #include "daep/eval/Plot.h"
 #include "daep/eval/RunRecorder.h"
 #include "daep/eval/Statistics.h"
@@ -25,6 +27,12 @@ namespace daep::eval {
 namespace {
 
 const std::string kProvenancePrefix = "provenance.";
+using detail::coverageAt;
+using detail::readCollisionEpisodes;
+using detail::readTimeseries;
+using detail::Series;
+using detail::spansOf;
+
 const std::set<std::string> kLabelKeys = {"world", "mode", "planner", "start", "seed"};
 const std::vector<std::string> kMetricOrder = {
     "coverage_percent",  "reachable_percent", "exploration_time_s", "path_length_m",
@@ -159,48 +167,10 @@ private:
     std::vector<std::pair<std::string, std::string>> pairs_;
 };
 
-struct Series {
-    std::vector<double> t, coverage;
-};
-
-Series readTimeseries(const fs::path& file) {
-    Series s;
-    std::ifstream in(file);
-    std::string line;
-    std::getline(in, line);  // header
-    while (std::getline(in, line)) {
-        double t = 0, c = 0;
-        if (std::sscanf(line.c_str(), "%lf,%lf", &t, &c) == 2)
-            s.t.push_back(t), s.coverage.push_back(c);
-    }
-    return s;
-}
-
-std::vector<std::pair<double, double>> readCollisions(const fs::path& file) {
-    std::vector<std::pair<double, double>> spans;
-    std::ifstream in(file);
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line)) {
-        int person = 0;
-        double a = 0, b = 0;
-        if (std::sscanf(line.c_str(), "%d,%lf,%lf", &person, &a, &b) == 3)
-            spans.emplace_back(a, b);
-    }
-    return spans;
-}
-
-/** Coverage at time t: the last sample at or before t (a finished run keeps its final value). */
-double coverageAt(const Series& s, double t) {
-    const auto it = std::upper_bound(s.t.begin(), s.t.end(), t);
-    if (it == s.t.begin())
-        return s.coverage.empty() ? 0.0 : s.coverage.front();
-    return s.coverage[static_cast<std::size_t>(it - s.t.begin()) - 1];
-}
-
-void writeCoveragePlot(const std::string& world, const std::string& mode,
-                       const std::vector<std::pair<std::string, std::vector<Series>>>& byPlanner,
-                       const std::vector<std::string>& allPlanners, const std::string& path) {
+std::vector<std::string> writeCoveragePlot(
+    const std::string& world, const std::string& mode,
+    const std::vector<std::pair<std::string, std::vector<Series>>>& byPlanner,
+    const std::vector<std::string>& allPlanners, const std::string& stem) {
     double end = 0.0;
     for (const auto& [planner, runs] : byPlanner)
         for (const auto& s : runs)
@@ -211,6 +181,7 @@ void writeCoveragePlot(const std::string& world, const std::string& mode,
     plot.setXLabel("time [s]");
     plot.setYLabel("coverage [%]");
     plot.setYRange(0.0, 100.0);
+    plot.setLegendCorner(LegendCorner::BottomRight);  // coverage rises from the bottom left
     for (std::size_t p = 0; p < byPlanner.size(); ++p) {
         const auto& runs = byPlanner[p].second;
         std::vector<double> t, mu, lo, hi;
@@ -227,16 +198,18 @@ void writeCoveragePlot(const std::string& world, const std::string& mode,
         const auto index = std::find(allPlanners.begin(), allPlanners.end(), byPlanner[p].first);
         const Rgb color = seriesColor(static_cast<std::size_t>(index - allPlanners.begin()));
         plot.addBand(t, lo, hi, color, 0.22);
-        plot.addLine(
-            t, mu, color,
-            displayName(byPlanner[p].first) + " (" + std::to_string(runs.size()) + " runs)");
+        plot.addLine(t, mu, color,
+                     displayName(byPlanner[p].first) + " (" + std::to_string(runs.size()) +
+                         (runs.size() == 1 ? " run)" : " runs)"));
     }
-    plot.save(path);
+    return plot.saveAs(stem);
 }
 
-void writeCollisionPlot(const RunResult& run, const std::string& path) {
+std::vector<std::string> writeCollisionPlot(const RunResult& run, const std::string& stem) {
     const Series s = readTimeseries(fs::path(run.directory) / "timeseries.csv");
-    const auto spans = readCollisions(fs::path(run.directory) / "collisions.csv");
+    const auto spans = spansOf(readCollisionEpisodes(
+        fs::path(run.directory) / "collisions.csv", run.metric("exploration_start_s"),
+        s.t.empty() ? run.metric("exploration_time_s") : s.t.back()));
     Plot plot(900, 360);
     plot.setTitle("Collisions: " + displayName(run.spec.planner) + ", " + run.spec.world + " (" +
                   run.spec.mode + "), start " + std::to_string(run.spec.start) + ", rep " +
@@ -247,7 +220,7 @@ void writeCollisionPlot(const RunResult& run, const std::string& path) {
     plot.setYRange(0.0, 100.0);
     plot.addLine(s.t, s.coverage, seriesColor(0), "coverage");
     plot.addIntervals(spans, {255, 140, 0}, "collision ongoing");
-    plot.save(path);
+    return plot.saveAs(stem);
 }
 
 }  // namespace
@@ -541,9 +514,12 @@ std::string perWorldMarkdown(const std::vector<RunResult>& runs, const std::stri
 std::vector<std::string> writePlots(const std::vector<RunResult>& runs,
                                     const std::string& plotDirectory) {
     std::vector<std::string> written;
-    // (world, mode) -> planner -> coverage series, in run order.
+    auto add = [&written](const std::vector<std::string>& paths) {
+        written.insert(written.end(), paths.begin(), paths.end());
+    };
+    // (world, mode) -> planner -> runs, in run order.
     std::vector<std::pair<std::pair<std::string, std::string>,
-                          std::vector<std::pair<std::string, std::vector<Series>>>>>
+                          std::vector<std::pair<std::string, std::vector<const RunResult*>>>>>
         groups;
     std::map<std::string, const RunResult*> bestRun;  // planner_world_mode -> highest coverage
     std::vector<std::string> planners;
@@ -561,24 +537,35 @@ std::vector<std::string> writePlots(const std::vector<RunResult>& runs,
                               [&r](const auto& e) { return e.first == r.spec.planner; });
         if (p == g->second.end())
             p = g->second.insert(g->second.end(), {r.spec.planner, {}});
-        p->second.push_back(readTimeseries(fs::path(r.directory) / "timeseries.csv"));
+        p->second.push_back(&r);
         const std::string id = r.spec.planner + "_" + r.spec.world + "_" + r.spec.mode;
         const RunResult*& best = bestRun[id];
         if (!best || r.metric("coverage_percent") > best->metric("coverage_percent"))
             best = &r;
     }
+    // Colour by the planner's place among all planners, the same in every figure.
+    auto colorOf = [&planners](const std::string& planner) {
+        const auto index = std::find(planners.begin(), planners.end(), planner);
+        return seriesColor(static_cast<std::size_t>(index - planners.begin()));
+    };
     for (const auto& [key, byPlanner] : groups) {
-        const auto path =
-            (fs::path(plotDirectory) / ("coverage_" + key.first + "_" + key.second + ".png"))
-                .string();
-        writeCoveragePlot(key.first, key.second, byPlanner, planners, path);
-        written.push_back(path);
+        const std::string name = key.first + "_" + key.second;
+        std::vector<std::pair<std::string, std::vector<Series>>> series;
+        std::vector<detail::PlannerRuns> fig4;
+        for (const auto& [planner, plannerRuns] : byPlanner) {
+            series.push_back({planner, {}});
+            for (const RunResult* r : plannerRuns)
+                series.back().second.push_back(
+                    readTimeseries(fs::path(r->directory) / "timeseries.csv"));
+            fig4.push_back({displayName(planner), colorOf(planner), plannerRuns});
+        }
+        add(writeCoveragePlot(key.first, key.second, series, planners,
+                              (fs::path(plotDirectory) / ("coverage_" + name)).string()));
+        add(detail::writeFig4(key.first, key.second, fig4,
+                              (fs::path(plotDirectory) / ("fig4_" + name)).string()));
     }
-    for (const auto& [id, run] : bestRun) {
-        const auto path = (fs::path(plotDirectory) / ("collisions_" + id + ".png")).string();
-        writeCollisionPlot(*run, path);
-        written.push_back(path);
-    }
+    for (const auto& [id, run] : bestRun)
+        add(writeCollisionPlot(*run, (fs::path(plotDirectory) / ("collisions_" + id)).string()));
     return written;
 }
 

@@ -13,13 +13,18 @@
 #include <mrpt/serialization/CArchive.h>
 #include <octomap/OcTree.h>
 
+#include <cstdio>
+#include <opencv2/core.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
 
+#include "daep/eval/ImageOverlay.h"
 #include "daep/mapping/ExplorationMap.h"
+#include "daep/mission/SceneColors.h"
 
 namespace daep::mission {
 namespace {
@@ -30,9 +35,15 @@ namespace gl = mrpt::opengl;
 
 constexpr unsigned kVoxelsInBox = 0;
 constexpr unsigned kVoxelsAbove = 1;  ///< ceilings: hidden in the top-down render
+/** Drawn over the voxels in the PNGs, so walls and ceilings never hide them. */
+const std::vector<std::string> kOnTop = {"trajectory", "predicted_paths", "drone"};
 
 TPoint3D toPoint(const Eigen::Vector3d& p) {
     return {p.x(), p.y(), p.z()};
+}
+
+mrpt::img::TColor toColor(SceneColor c, unsigned char alpha = 255) {
+    return {c.r, c.g, c.b, alpha};
 }
 
 gl::COctoMapVoxels::Ptr makeVoxels(const mapping::ExplorationMap& map) {
@@ -53,9 +64,7 @@ gl::COctoMapVoxels::Ptr makeVoxels(const mapping::ExplorationMap& map) {
         const Eigen::Vector3d p(c.x(), c.y(), c.z());
         lo = lo.cwiseMin(p);
         hi = hi.cwiseMax(p);
-        // Jet without its darkest blue and red ends: the floor stays readable under lighting.
-        const double h = std::clamp((p.z() - box.min.z()) / zSpan, 0.0, 1.0);
-        const auto color = mrpt::img::colormap(mrpt::img::cmJET, float(0.15 + 0.75 * h));
+        const auto color = toColor(voxelColor((p.z() - box.min.z()) / zSpan));
         const unsigned set = p.z() > box.max.z() ? kVoxelsAbove : kVoxelsInBox;
         voxels->push_back_Voxel(set, {{c.x(), c.y(), c.z()}, it.getSize(), color});
     }
@@ -73,14 +82,15 @@ gl::CSetOfLines::Ptr makeLines(const std::string& name, mrpt::img::TColor color,
 }
 
 gl::CSetOfLines::Ptr makeTrajectory(const std::vector<Eigen::Vector3d>& points) {
-    auto lines = makeLines("trajectory", {255, 110, 0}, 3.0f);
+    auto lines = makeLines("trajectory", toColor(kTrajectoryColor), 3.0f);
     for (std::size_t i = 1; i < points.size(); ++i)
         lines->appendLine(toPoint(points[i - 1]), toPoint(points[i]));
     return lines;
 }
 
 gl::CSetOfLines::Ptr makeTree(const std::vector<planning::TreeEdge>& edges) {
-    auto lines = makeLines("tree", {0, 110, 40}, 1.0f);
+    // Thin and light: context for the plan, not the subject of the picture.
+    auto lines = makeLines("tree", toColor(kTreeColor, 110), 1.0f);
     for (const auto& e : edges)
         lines->appendLine(toPoint(e.from), toPoint(e.to));
     return lines;
@@ -95,7 +105,7 @@ gl::CSetOfObjects::Ptr makePeople(const SceneContent& c) {
         auto body = gl::CBox::Create(TPoint3D(-half.x(), -half.y(), 0),
                                      TPoint3D(half.x(), half.y(), c.bodySize.z()));
         body->setName("person_" + std::to_string(i));
-        body->setColor_u8(200, 30, 60, 220);
+        body->setColor_u8(toColor(kPersonColor));
         body->setPose(mrpt::poses::CPose3D(s.position.x(), s.position.y(), 0, s.heading, 0, 0));
         people->insert(body);
     }
@@ -104,7 +114,7 @@ gl::CSetOfObjects::Ptr makePeople(const SceneContent& c) {
 
 /** Constant-velocity extrapolation of each person's true velocity, drawn at knee height. */
 gl::CSetOfLines::Ptr makePredictions(const SceneContent& c) {
-    auto lines = makeLines("predicted_paths", {170, 0, 220}, 3.0f);
+    auto lines = makeLines("predicted_paths", toColor(kPredictionColor), 3.0f);
     const double z = 0.3;
     for (const auto& s : c.people) {
         const Eigen::Vector2d end = s.position + SceneExporter::kPredictionHorizon * s.velocity;
@@ -116,7 +126,7 @@ gl::CSetOfLines::Ptr makePredictions(const SceneContent& c) {
 gl::CBox::Ptr makeDrone(const FlatPose& drone) {
     auto box = gl::CBox::Create(TPoint3D(-0.25, -0.25, -0.08), TPoint3D(0.25, 0.25, 0.08));
     box->setName("drone");
-    box->setColor_u8(20, 20, 20);
+    box->setColor_u8(toColor(kDroneColor));
     const Eigen::Vector3d& p = drone.position;
     box->setPose(mrpt::poses::CPose3D(p.x(), p.y(), p.z(), drone.yaw, 0, 0));
     return box;
@@ -150,35 +160,52 @@ COpenGLScene buildScene(const SceneContent& c) {
     return scene;
 }
 
+/** A camera and the depth range that holds the scene, for depth precision (no z-fighting). */
+struct View {
+    gl::CCamera camera;
+    float nearClip, farClip;
+    double metresPerPixel = 0.0;  ///< on the ground, for a scale bar; 0 in perspective
+};
+
 /** Perspective: from the south-west, above, framing the whole exploration box. */
-gl::CCamera perspectiveCamera(const Aabb& box) {
-    gl::CCamera cam;
+View perspectiveView(const Aabb& box) {
+    View v;
     const Eigen::Vector3d centre = box.center();
-    cam.setPointingAt(centre.x(), centre.y(), centre.z());
-    cam.setProjectiveModel(true);
-    cam.setProjectiveFOVdeg(40.0f);
-    cam.setAzimuthDegrees(-60.0f);
-    cam.setElevationDegrees(55.0f);
-    cam.setZoomDistance(static_cast<float>(1.25 * box.size().norm()));
-    return cam;
+    const double diagonal = box.size().norm(), distance = 1.25 * diagonal;
+    v.camera.setPointingAt(centre.x(), centre.y(), centre.z());
+    v.camera.setProjectiveModel(true);
+    v.camera.setProjectiveFOVdeg(40.0f);
+    v.camera.setAzimuthDegrees(-60.0f);
+    v.camera.setElevationDegrees(55.0f);
+    v.camera.setZoomDistance(static_cast<float>(distance));
+    // The grid reaches 1 m beyond the box on every side.
+    v.nearClip = static_cast<float>(std::max(0.05, 0.1 * distance));
+    v.farClip = static_cast<float>(distance + diagonal + 4.0);
+    return v;
 }
 
 /**
  * Top-down, +x right and +y up: a narrow perspective from high above, nearly orthographic
  * (MRPT's orthographic mode scales with the viewport in ways that vary between versions).
  */
-gl::CCamera topCamera(const Aabb& box, double aspect) {
+View topView(const Aabb& box, int width, int height) {
     constexpr double kFovDeg = 15.0;
-    gl::CCamera cam;
+    View v;
     const Eigen::Vector3d centre = box.center();
-    cam.setPointingAt(centre.x(), centre.y(), 0.0);
-    cam.setProjectiveModel(true);
-    cam.setProjectiveFOVdeg(static_cast<float>(kFovDeg));
-    cam.setAzimuthDegrees(-90.0f);
-    cam.setElevationDegrees(89.9f);
+    v.camera.setPointingAt(centre.x(), centre.y(), 0.0);
+    v.camera.setProjectiveModel(true);
+    v.camera.setProjectiveFOVdeg(static_cast<float>(kFovDeg));
+    v.camera.setAzimuthDegrees(-90.0f);
+    v.camera.setElevationDegrees(89.9f);
+    const double aspect = double(width) / height;
     const double extent = 1.15 * std::max(box.size().x() / aspect, box.size().y());
-    cam.setZoomDistance(static_cast<float>(extent / (2 * std::tan(kFovDeg * M_PI / 360))));
-    return cam;
+    const double distance = extent / (2 * std::tan(kFovDeg * M_PI / 360));
+    v.camera.setZoomDistance(static_cast<float>(distance));
+    const double depth = std::max(box.max.z(), 0.0) - std::min(box.min.z(), 0.0) + 2.0;
+    v.nearClip = static_cast<float>(std::max(0.05, distance - box.max.z() - 2.0));
+    v.farClip = static_cast<float>(distance + depth);
+    v.metresPerPixel = extent / height;  // the field of view is vertical
+    return v;
 }
 
 void saveScene(const COpenGLScene& scene, const std::string& path) {
@@ -206,12 +233,94 @@ std::string oneLine(const std::string& text) {
     return first == std::string::npos ? message : message.substr(first, last - first + 1);
 }
 
-void savePng(const mrpt::img::CImage& image, const std::string& path) {
-    if (!image.saveToFile(path))
-        throw std::runtime_error("cannot write " + path);
+eval::Rgb toRgb(SceneColor c) {
+    return {c.r, c.g, c.b};
+}
+
+/**
+ * Headless GL draws lines 1 px wide whatever their width: the trajectory gets copies shifted
+ * by about a pixel (`step` metres) in x and y, which read as one bold line.
+ */
+void thicken(gl::CSetOfLines& lines, double step) {
+    const std::size_t n = lines.getLineCount();
+    for (const auto& [dx, dy] : {std::pair{step, 0.0}, {-step, 0.0}, {0.0, step}, {0.0, -step}}) {
+        for (std::size_t i = 0; i < n; ++i) {
+            double x0, y0, z0, x1, y1, z1;
+            lines.getLineByIndex(i, x0, y0, z0, x1, y1, z1);
+            lines.appendLine(x0 + dx, y0 + dy, z0, x1 + dx, y1 + dy, z1);
+        }
+    }
+}
+
+/** Moves the objects named in kOnTop into a viewport drawn after the main one (its own depth). */
+void liftOnTop(COpenGLScene& scene, double pixelMetres) {
+    if (auto trajectory = scene.getByName("trajectory"))
+        thicken(dynamic_cast<gl::CSetOfLines&>(*trajectory), 0.7 * pixelMetres);
+    auto overlay = scene.createViewport("on_top");
+    overlay->setTransparent(true);
+    for (const auto& name : kOnTop)
+        if (auto object = scene.getByName(name)) {
+            scene.removeObject(object);
+            overlay->insert(object);
+        }
+}
+
+eval::Overlay overlayFor(const Aabb& box, const std::string& title) {
+    using Shape = eval::LegendSwatch::Shape;
+    eval::Overlay o;
+    o.title = title;
+    o.legend = {{"trajectory", toRgb(kTrajectoryColor), Shape::Line},
+                {"drone", toRgb(kDroneColor), Shape::Box},
+                {"people (true position)", toRgb(kPersonColor), Shape::Box},
+                {"predicted paths (10 s ahead)", toRgb(kPredictionColor), Shape::Line},
+                {"last planning tree", toRgb(kTreeColor), Shape::Thin},
+                {"exploration box", {60, 60, 60}, Shape::Thin}};
+    for (double h = 0.0; h <= 1.0 + 1e-9; h += 0.125)
+        o.colorBar.stops.push_back(toRgb(voxelColor(h)));
+    char low[32], high[32];
+    std::snprintf(low, sizeof low, "%.1f m", box.min.z());
+    std::snprintf(high, sizeof high, "%.1f m", box.max.z());
+    o.colorBar = {"occupied voxels by height", o.colorBar.stops, low, high};
+    return o;
+}
+
+/** Renders `view` (every viewport gets its camera and depth range) and writes the PNG. */
+void renderView(gl::CFBORender& fbo, COpenGLScene& scene, const View& view,
+                const eval::Overlay& overlay, const std::string& path) {
+    for (const auto& viewport : scene.viewports()) {
+        viewport->getCamera() = view.camera;
+        viewport->setViewportClipDistances(view.nearClip, view.farClip);
+    }
+    fbo.setCamera(scene, view.camera);
+    mrpt::img::CImage image;
+    fbo.render_RGB(scene, image);
+    const cv::Mat& bgr = image.asCvMatRef();
+    eval::writeAnnotatedPng(bgr.ptr<unsigned char>(0), bgr.cols, bgr.rows, bgr.step, overlay, path);
+}
+
+void renderPngs(gl::CFBORender& fbo, COpenGLScene& scene, const Aabb& box,
+                const std::string& directory, int width, int height) {
+    liftOnTop(scene, 1.15 * std::max(box.size().x(), box.size().y()) / height);
+    const View perspective = perspectiveView(box);
+    eval::Overlay overlay = overlayFor(box, "Perspective view");
+    overlay.legend.push_back(
+        {"ground grid: 1 m", {170, 170, 180}, eval::LegendSwatch::Shape::Thin});
+    renderView(fbo, scene, perspective, overlay, directory + "/scene_perspective.png");
+
+    scene.getByClass<gl::COctoMapVoxels>()->showVoxels(kVoxelsAbove, false);
+    const View top = topView(box, width, height);
+    overlay = overlayFor(box, "Top view");
+    overlay.metresPerPixel = top.metresPerPixel;
+    renderView(fbo, scene, top, overlay, directory + "/scene_top.png");
 }
 
 }  // namespace
+
+SceneColor voxelColor(double heightFraction) {
+    const double h = std::isnan(heightFraction) ? 0.0 : std::clamp(heightFraction, 0.0, 1.0);
+    const auto c = mrpt::img::colormap(mrpt::img::cmJET, float(0.15 + 0.75 * h));
+    return {c.R, c.G, c.B};
+}
 
 struct SceneExporter::Impl {
     std::unique_ptr<gl::CFBORender> renderer;
@@ -229,23 +338,14 @@ SceneExporter::~SceneExporter() = default;
 void SceneExporter::write(const SceneContent& content) {
     COpenGLScene scene = buildScene(content);
     const Aabb& box = content.map->explorationBox();
-    scene.getViewport()->getCamera() = perspectiveCamera(box);
+    scene.getViewport()->getCamera() = perspectiveView(box).camera;
     saveScene(scene, directory_ + "/scene.3Dscene");
     if (!renderPng_)
         return;
     try {
         if (!impl_->renderer)
             impl_->renderer = std::make_unique<gl::CFBORender>(params_.pngWidth, params_.pngHeight);
-        auto& fbo = *impl_->renderer;
-        mrpt::img::CImage image;
-        fbo.setCamera(scene, perspectiveCamera(box));
-        fbo.render_RGB(scene, image);
-        savePng(image, directory_ + "/scene_perspective.png");
-        auto voxels = scene.getByClass<gl::COctoMapVoxels>();
-        voxels->showVoxels(kVoxelsAbove, false);
-        fbo.setCamera(scene, topCamera(box, double(params_.pngWidth) / params_.pngHeight));
-        fbo.render_RGB(scene, image);
-        savePng(image, directory_ + "/scene_top.png");
+        renderPngs(*impl_->renderer, scene, box, directory_, params_.pngWidth, params_.pngHeight);
     } catch (const std::exception& e) {
         renderPng_ = false;
         impl_->renderer.reset();
