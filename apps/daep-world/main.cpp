@@ -1,5 +1,5 @@
-// daep-world: imports Gazebo worlds into the world format, draws worlds as PNG, and bounds the
-// coverage a run can reach.
+// daep-world: imports Gazebo worlds into the world format, draws worlds as PNG, bounds the
+// coverage a run can reach, and scans worlds into OctoMaps and point clouds.
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
@@ -13,6 +13,7 @@
 #include "daep/common/Error.h"
 #include "daep/world/GazeboImport.h"
 #include "daep/world/ReachableVolume.h"
+#include "daep/world/VoxelMaps.h"
 #include "daep/world/WorldSpec.h"
 
 namespace {
@@ -43,6 +44,8 @@ struct Args {
     daep::world::GazeboImportOptions import;
     int start = -1;  ///< reach: -1 = every start
     daep::world::ReachParams reach;
+    daep::world::LaserScanParams scan;
+    double stationHeight = 1.3;
 };
 
 std::string nextValue(int& i, int argc, char** argv) {
@@ -77,6 +80,16 @@ double parseLength(const std::string& flag, const std::string& text, bool zeroAl
     return v;
 }
 
+Eigen::Vector3d parseStation(const std::string& text) {
+    Eigen::Vector3d p;
+    std::istringstream in(text);
+    char comma1 = 0, comma2 = 0;
+    if (!(in >> p.x() >> comma1 >> p.y() >> comma2 >> p.z()) || comma1 != ',' || comma2 != ',' ||
+        !(in >> std::ws).eof() || !p.allFinite())
+        throw daep::InputError("--station: expected X,Y,Z in metres, got '" + text + "'");
+    return p;
+}
+
 Args parseArgs(int argc, char** argv) {
     Args a;
     auto& o = a.import;
@@ -108,6 +121,14 @@ Args parseArgs(int argc, char** argv) {
             a.reach.robotRadius = parseLength(arg, nextValue(i, argc, argv), true);
         else if (arg == "--climb")
             a.reach.climb = parseLength(arg, nextValue(i, argc, argv), true);
+        else if (arg == "--station")
+            a.scan.stations.push_back(parseStation(nextValue(i, argc, argv)));
+        else if (arg == "--height")
+            a.stationHeight = parseLength(arg, nextValue(i, argc, argv), true);
+        else if (arg == "--step-deg")
+            a.scan.stepDeg = parseLength(arg, nextValue(i, argc, argv), false);
+        else if (arg == "--max-range")
+            a.scan.maxRange = parseLength(arg, nextValue(i, argc, argv), false);
         else if (!arg.empty() && arg[0] == '-')
             throw daep::InputError("unknown option " + arg);
         else
@@ -188,6 +209,24 @@ int runReach(const Args& a) {
     return 0;
 }
 
+int runScan(const Args& a) {
+    requireOut(a);
+    const auto world = daep::world::loadWorldFile(daep::world::resolveWorldPath(a.positional[0]));
+    auto params = a.scan;
+    params.resolution = a.reach.resolution;
+    if (params.stations.empty())
+        for (const auto& s : world.starts)
+            params.stations.push_back(s + Eigen::Vector3d(0.0, 0.0, a.stationHeight));
+    const auto r = daep::world::scanWorldToFile(world, params, a.out);
+    std::cout << "wrote " << a.out << ": " << params.stations.size() << " stations, " << r.rays
+              << " rays, " << r.returns << " returns";
+    if (r.nodes > 0)
+        std::cout << ", " << r.nodes << " nodes (" << r.occupiedLeaves << " occupied leaves) at "
+                  << params.resolution << " m";
+    std::cout << "\n";
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -196,7 +235,7 @@ int main(int argc, char** argv) {
         std::cout << kUsage;
         return 0;
     }
-    if (command != "import" && command != "render" && command != "reach") {
+    if (command != "import" && command != "render" && command != "reach" && command != "scan") {
         std::cerr << (command.empty() ? "error: no command\n"
                                       : "error: unknown command '" + command + "'\n")
                   << kUsage;
@@ -206,6 +245,8 @@ int main(int argc, char** argv) {
         const Args args = parseArgs(argc, argv);
         if (command == "reach")
             return runReach(args);
+        if (command == "scan")
+            return runScan(args);
         return command == "import" ? runImport(args) : runRender(args);
     });
 }
