@@ -352,5 +352,24 @@ TEST(VoxelMaps, ScanOfAWorldGivesItsMapBack) {
     EXPECT_THROW(scanWorldToFile(box, params, (dir.path() / "scan.obj").string()), InputError);
 }
 
+TEST(VoxelMaps, ShippedScansOfTheTinyRoomHaveItsWalls) {
+    const std::string maps = std::string(DAEP_SOURCE_DIR) + "/tests/e2e/data/maps/";
+    for (const char* file : {"tiny_room_bt.yaml", "tiny_room_ot.yaml", "tiny_room_ply.yaml"}) {
+        const WorldSpec w = loadWorldFile(maps + file);
+        ASSERT_EQ(w.voxelMaps.size(), 1u) << file;
+        const double res = w.voxelMaps[0].resolution;
+        const RayCaster rc(w);
+        // From the west room towards the partition's face at x = -0.075, and up into the sky.
+        const float d = rc.castRay({-2, -1, 1}, {1, 0, 0}, 10.0f);
+        EXPECT_NEAR(d, 1.925f, res + 1e-4) << file;
+        EXPECT_EQ(rc.castRay({-2, -1, 1}, {0, 0, 1}, 10.0f), std::numeric_limits<float>::infinity())
+            << file;
+        const StaticCollisionChecker checker(w);
+        for (const auto& s : w.starts)
+            EXPECT_FALSE(checker.overlaps(s + Eigen::Vector3d(0, 0, 1), {0.4, 0.4, 0.1}, 0.0))
+                << file;
+    }
+}
+
 }  // namespace
 }  // namespace daep::world
