@@ -100,6 +100,11 @@ std::vector<Footprint> footprints(const WorldSpec& w, const Projection& proj) {
                 pts.push_back(m.vertices[t[k]].cast<double>());
             add(pts);
         }
+    for (const auto& map : w.voxelMaps)
+        for (const auto& b : map.boxes)
+            out.push_back({{proj.toPixel(b.min.x(), b.min.y()), proj.toPixel(b.max.x(), b.min.y()),
+                            proj.toPixel(b.max.x(), b.max.y()), proj.toPixel(b.min.x(), b.max.y())},
+                           b.max.z()});
     std::sort(out.begin(), out.end(),
               [](const Footprint& a, const Footprint& b) { return a.top < b.top; });
     return out;
@@ -221,7 +226,9 @@ void drawLegend(cv::Mat& img, const WorldSpec& w) {
 }
 
 void drawTitle(cv::Mat& img, const WorldSpec& w) {
-    size_t triangles = 0, boxes = 0;
+    size_t triangles = 0, boxes = 0, voxelBoxes = 0;
+    for (const auto& map : w.voxelMaps)
+        voxelBoxes += map.boxes.size();
     for (const auto& m : w.meshes)
         triangles += m.triangles.size();
     for (const auto& b : w.boxes)
@@ -233,11 +240,15 @@ void drawTitle(cv::Mat& img, const WorldSpec& w) {
                   "triangles), %zu people",
                   w.name.c_str(), s.x(), s.y(), s.z(), boxes, w.cylinders.size(), w.meshes.size(),
                   triangles, w.people.size());
+    std::string title = buf;
+    if (voxelBoxes > 0)
+        title += ", " + std::to_string(voxelBoxes) + " voxel-map boxes";
     double font = 0.55;
     int base = 0;
-    while (font > 0.3 && cv::getTextSize(buf, kFont, font, 1, &base).width > img.cols - 2 * kMargin)
+    while (font > 0.3 &&
+           cv::getTextSize(title, kFont, font, 1, &base).width > img.cols - 2 * kMargin)
         font -= 0.05;
-    cv::putText(img, buf, {kMargin, 26}, kFont, font, kBlack, 1, cv::LINE_AA);
+    cv::putText(img, title, {kMargin, 26}, kFont, font, kBlack, 1, cv::LINE_AA);
 }
 
 /** xy extent of the box, starts, routes and geometry (without the ground slab). */
@@ -263,6 +274,11 @@ void extentOf(const WorldSpec& w, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
     for (const auto& m : w.meshes)
         for (const auto& v : m.vertices)
             grow(v.x(), v.y());
+    for (const auto& map : w.voxelMaps)
+        for (const auto& b : map.boxes) {
+            grow(b.min.x(), b.min.y());
+            grow(b.max.x(), b.max.y());
+        }
     const Eigen::Vector2d pad = Eigen::Vector2d::Constant(0.03 * (hi - lo).maxCoeff() + 0.5);
     lo -= pad;
     hi += pad;

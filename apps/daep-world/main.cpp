@@ -1,5 +1,5 @@
-// daep-world: imports Gazebo worlds into the world format, draws worlds as PNG, and bounds the
-// coverage a run can reach.
+// daep-world: imports Gazebo worlds into the world format, draws worlds as PNG, bounds the
+// coverage a run can reach, and scans worlds into OctoMaps and point clouds.
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
@@ -15,6 +15,7 @@
 #include "daep/common/Error.h"
 #include "daep/world/GazeboImport.h"
 #include "daep/world/ReachableVolume.h"
+#include "daep/world/VoxelMaps.h"
 #include "daep/world/WorldSpec.h"
 
 namespace {
@@ -45,6 +46,8 @@ struct Args {
     daep::world::GazeboImportOptions import;
     int start = -1;  ///< reach: -1 = every start
     daep::world::ReachParams reach;
+    daep::world::LaserScanParams scan;
+    double stationHeight = 1.3;
 };
 
 int parseSize(const std::string& text) {
@@ -71,6 +74,16 @@ double parseLength(const std::string& flag, const std::string& text, bool zeroAl
         throw daep::InputError(flag + ": expected a length " + (zeroAllowed ? ">= 0" : "> 0") +
                                " in metres, got '" + text + "'");
     return v;
+}
+
+Eigen::Vector3d parseStation(const std::string& text) {
+    Eigen::Vector3d p;
+    std::istringstream in(text);
+    char comma1 = 0, comma2 = 0;
+    if (!(in >> p.x() >> comma1 >> p.y() >> comma2 >> p.z()) || comma1 != ',' || comma2 != ',' ||
+        !(in >> std::ws).eof() || !p.allFinite())
+        throw daep::InputError("--station: expected X,Y,Z in metres, got '" + text + "'");
+    return p;
 }
 
 /** The options of `command` (import, render or reach); nullopt after --help or --version. */
@@ -103,6 +116,23 @@ std::optional<Args> parseArgs(const std::string& command, int argc, char** argv)
                     })
             .option("--climb", [&a](const std::string& t) {
                 a.reach.climb = parseLength("--climb", t, true);
+            });
+    if (command == "scan")
+        cli.option("--resolution",
+                   [&a](const std::string& t) {
+                       a.reach.resolution = parseLength("--resolution", t, false);
+                   })
+            .option("--station",
+                    [&a](const std::string& t) { a.scan.stations.push_back(parseStation(t)); })
+            .option(
+                "--height",
+                [&a](const std::string& t) { a.stationHeight = parseLength("--height", t, true); })
+            .option("--step-deg",
+                    [&a](const std::string& t) {
+                        a.scan.stepDeg = parseLength("--step-deg", t, false);
+                    })
+            .option("--max-range", [&a](const std::string& t) {
+                a.scan.maxRange = parseLength("--max-range", t, false);
             });
     if (!cli.parse(argc, argv))
         return std::nullopt;
@@ -186,9 +216,27 @@ int withoutCommand(int argc, char** argv) {
         return 0;
     if (command.empty())
         throw daep::InputError(
-            "daep-world: no command (import, render or reach; see daep-world --help)");
+            "daep-world: no command (import, render, reach or scan; see daep-world --help)");
     throw daep::InputError("daep-world: unknown command '" + command.front() +
-                           "' (import, render or reach; see daep-world --help)");
+                           "' (import, render, reach or scan; see daep-world --help)");
+}
+
+int runScan(const Args& a) {
+    requireOut(a);
+    const auto world = daep::world::loadWorldFile(daep::world::resolveWorldPath(a.positional[0]));
+    auto params = a.scan;
+    params.resolution = a.reach.resolution;
+    if (params.stations.empty())
+        for (const auto& s : world.starts)
+            params.stations.push_back(s + Eigen::Vector3d(0.0, 0.0, a.stationHeight));
+    const auto r = daep::world::scanWorldToFile(world, params, a.out);
+    std::cout << "wrote " << a.out << ": " << params.stations.size() << " stations, " << r.rays
+              << " rays, " << r.returns << " returns";
+    if (r.nodes > 0)
+        std::cout << ", " << r.nodes << " nodes (" << r.occupiedLeaves << " occupied leaves) at "
+                  << params.resolution << " m";
+    std::cout << "\n";
+    return 0;
 }
 
 }  // namespace
@@ -200,13 +248,15 @@ int main(int argc, char** argv) {
         return 0;
     }
     return daep::runApp([&] {
-        if (command != "import" && command != "render" && command != "reach")
+        if (command != "import" && command != "render" && command != "reach" && command != "scan")
             return withoutCommand(argc, argv);
         const auto args = parseArgs(command, argc - 1, argv + 1);
         if (!args)
             return 0;
         if (command == "reach")
             return runReach(*args);
+        if (command == "scan")
+            return runScan(*args);
         return command == "import" ? runImport(*args) : runRender(*args);
     });
 }

@@ -1,11 +1,16 @@
 // Benchmarks of the world module: the depth camera's ray casting hot path and its helpers.
 #include <benchmark/benchmark.h>
 
+#include <octomap/OcTree.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "daep/world/People.h"
 #include "daep/world/RayCaster.h"
+#include "daep/world/VoxelMaps.h"
 #include "daep/world/WorldSpec.h"
 
 namespace {
@@ -73,5 +78,108 @@ void BM_StaticOverlapExhibition(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_StaticOverlapExhibition);
+
+/**
+ * A scanned building's map at 0.05 m: a 20 x 20 x 3 m storey, outer and inner walls one cell
+ * thick every 4 m, floor and ceiling, a 25 cm door in every inner wall and scattered clutter;
+ * written as .bt and a world file around it, once per process.
+ */
+struct LargeMap {
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / "daep_bench_large_map";
+    std::string world = (dir / "building.yaml").string();
+    std::size_t nodes = 0;
+
+    LargeMap() {
+        std::filesystem::create_directories(dir);
+        octomap::OcTree tree(0.05);
+        const int n = 400, h = 60;  // cells: 20 m, 3 m
+        auto occupy = [&](int i, int j, int k) {
+            tree.updateNode(octomap::point3d(0.05f * i - 10.0f + 0.025f, 0.05f * j - 10.0f + 0.025f,
+                                             0.05f * k + 0.025f),
+                            true, true);
+        };
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                occupy(i, j, -1);
+                occupy(i, j, h);
+                const bool wallX = i % 80 == 0 || i == n - 1, wallY = j % 80 == 0 || j == n - 1;
+                const bool door = (i % 80 == 40 || j % 80 == 40) && i > 0 && j > 0;
+                if ((wallX || wallY) && !door)
+                    for (int k = 0; k < h; ++k)
+                        occupy(i, j, k);
+            }
+        // Clutter that merges with nothing: 200k scattered cells up to 2 m (a fixed sequence).
+        std::uint32_t r = 12345;
+        auto next = [&r](int m) { return int((r = r * 1664525u + 1013904223u) >> 8) % m; };
+        for (int c = 0; c < 200000; ++c)
+            occupy(next(n), next(n), next(40));
+        tree.updateInnerOccupancy();
+        tree.prune();
+        nodes = tree.size();
+        tree.writeBinary((dir / "building.bt").string());
+        std::ofstream(world) << "exploration_box: {min: [-9.5, -9.5, 0], max: [9.5, 9.5, 2.9]}\n"
+                                "starts: [[-8, -8, 0.3]]\noctomap: building.bt\n";
+    }
+    static const LargeMap& get() {
+        static const LargeMap map;
+        return map;
+    }
+};
+
+/** Loading the large map's world file: reading the octree, merging its leaves into boxes. */
+void BM_LoadLargeOctomapWorld(benchmark::State& state) {
+    const LargeMap& large = LargeMap::get();
+    std::size_t cells = 0, boxes = 0;
+    for (auto _ : state) {
+        const WorldSpec w = loadWorldFile(large.world);
+        cells = w.voxelMaps[0].cells;
+        boxes = w.voxelMaps[0].boxes.size();
+    }
+    state.counters["octree_nodes"] = double(large.nodes);
+    state.counters["cells"] = double(cells);
+    state.counters["boxes"] = double(boxes);
+}
+BENCHMARK(BM_LoadLargeOctomapWorld)->Unit(benchmark::kMillisecond);
+
+/** Building the Embree scene and the collision checker of the large map. */
+void BM_BuildLargeOctomapScene(benchmark::State& state) {
+    const WorldSpec w = loadWorldFile(LargeMap::get().world);
+    for (auto _ : state) {
+        const RayCaster caster(w);
+        const StaticCollisionChecker checker(w);
+        benchmark::DoNotOptimize(&caster);
+        benchmark::DoNotOptimize(&checker);
+    }
+}
+BENCHMARK(BM_BuildLargeOctomapScene)->Unit(benchmark::kMillisecond);
+
+/** One 640 x 480 depth frame in a room of the large map. */
+void BM_CastRaysLargeOctomapFrame(benchmark::State& state) {
+    const WorldSpec w = loadWorldFile(LargeMap::get().world);
+    const RayCaster caster(w);
+    const std::vector<Eigen::Vector3f> dirs = pinholeFan(640, 480, 103.2);
+    std::vector<float> ranges;
+    for (auto _ : state) {
+        caster.castRays({-7, -7, 1}, dirs, 10.0f, ranges);
+        benchmark::DoNotOptimize(ranges.data());
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(dirs.size()));
+}
+BENCHMARK(BM_CastRaysLargeOctomapFrame)->Unit(benchmark::kMillisecond);
+
+/** Drone-box overlap queries along the large map's walls. */
+void BM_StaticOverlapLargeOctomap(benchmark::State& state) {
+    const WorldSpec w = loadWorldFile(LargeMap::get().world);
+    const StaticCollisionChecker checker(w);
+    const Eigen::Vector3d drone(0.4, 0.4, 0.1);
+    int i = 0;
+    for (auto _ : state) {
+        const Eigen::Vector3d c(-9.9 + 0.05 * (i % 397), -6.0 + 0.37 * (i % 41),
+                                0.5 + 0.01 * (i % 7));
+        benchmark::DoNotOptimize(checker.overlaps(c, drone, 0.1 * i));
+        ++i;
+    }
+}
+BENCHMARK(BM_StaticOverlapLargeOctomap);
 
 }  // namespace

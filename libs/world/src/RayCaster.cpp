@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -101,6 +102,82 @@ void fillPacket(Packet& p, int* valid, const Eigen::Vector3f& o, const Eigen::Ve
     }
 }
 
+/** A voxel map's box in float, as rays are traced. */
+struct FloatBox {
+    float lo[3], hi[3];
+};
+
+/**
+ * Distance along the ray to the box's surface within [tnear, tfar), or -1: the entry, or the
+ * exit when the origin lies inside (as a ray meets a box made of triangles).
+ */
+float boxHit(const FloatBox& b, const float o[3], const float d[3], float tnear, float tfar) {
+    float entry = -kInf, exit = kInf;
+    for (int k = 0; k < 3; ++k) {
+        if (d[k] == 0.0f) {
+            if (o[k] < b.lo[k] || o[k] > b.hi[k])
+                return -1.0f;
+            continue;
+        }
+        const float inv = 1.0f / d[k];
+        const float t0 = (b.lo[k] - o[k]) * inv, t1 = (b.hi[k] - o[k]) * inv;
+        entry = std::max(entry, std::min(t0, t1));
+        exit = std::min(exit, std::max(t0, t1));
+    }
+    if (entry > exit)
+        return -1.0f;
+    const float t = entry >= tnear ? entry : exit;
+    return t >= tnear && t < tfar ? t : -1.0f;
+}
+
+/** Embree user geometry callback: the voxel boxes against a packet of N rays. */
+void intersectVoxelBoxes(const RTCIntersectFunctionNArguments* args) {
+    const auto& box = static_cast<const FloatBox*>(args->geometryUserPtr)[args->primID];
+    const unsigned n = args->N;
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, n);
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, n);
+    for (unsigned i = 0; i < n; ++i) {
+        if (args->valid[i] == 0)
+            continue;
+        const float o[3] = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i),
+                            RTCRayN_org_z(ray, n, i)};
+        const float d[3] = {RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i),
+                            RTCRayN_dir_z(ray, n, i)};
+        const float t = boxHit(box, o, d, RTCRayN_tnear(ray, n, i), RTCRayN_tfar(ray, n, i));
+        if (t < 0.0f)
+            continue;
+        RTCRayN_tfar(ray, n, i) = t;
+        RTCHitN_Ng_x(hit, n, i) = RTCHitN_Ng_y(hit, n, i) = RTCHitN_Ng_z(hit, n, i) = 0.0f;
+        RTCHitN_u(hit, n, i) = RTCHitN_v(hit, n, i) = 0.0f;
+        RTCHitN_primID(hit, n, i) = args->primID;
+        RTCHitN_geomID(hit, n, i) = args->geomID;
+        RTCHitN_instID(hit, n, i, 0) = args->context->instID[0];
+    }
+}
+
+void occludedByVoxelBoxes(const RTCOccludedFunctionNArguments* args) {
+    const auto& box = static_cast<const FloatBox*>(args->geometryUserPtr)[args->primID];
+    const unsigned n = args->N;
+    for (unsigned i = 0; i < n; ++i) {
+        if (args->valid[i] == 0)
+            continue;
+        const float o[3] = {RTCRayN_org_x(args->ray, n, i), RTCRayN_org_y(args->ray, n, i),
+                            RTCRayN_org_z(args->ray, n, i)};
+        const float d[3] = {RTCRayN_dir_x(args->ray, n, i), RTCRayN_dir_y(args->ray, n, i),
+                            RTCRayN_dir_z(args->ray, n, i)};
+        if (boxHit(box, o, d, RTCRayN_tnear(args->ray, n, i), RTCRayN_tfar(args->ray, n, i)) >=
+            0.0f)
+            RTCRayN_tfar(args->ray, n, i) = -kInf;
+    }
+}
+
+void voxelBoxBounds(const RTCBoundsFunctionArguments* args) {
+    const auto& box = static_cast<const FloatBox*>(args->geometryUserPtr)[args->primID];
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = box.lo[0], b->lower_y = box.lo[1], b->lower_z = box.lo[2];
+    b->upper_x = box.hi[0], b->upper_y = box.hi[1], b->upper_z = box.hi[2];
+}
+
 }  // namespace
 
 struct RayCaster::Impl {
@@ -112,6 +189,7 @@ struct RayCaster::Impl {
     unsigned peopleGeomId = RTC_INVALID_GEOMETRY_ID;
     std::size_t trianglesPerPerson = 0;
     bool packets16 = false;
+    std::vector<FloatBox> voxelBoxes;  ///< the voxel maps' boxes, read by the user geometry
 
     ~Impl() {
         if (people != nullptr)
@@ -138,6 +216,25 @@ struct RayCaster::Impl {
         RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
         setTriangles(geom, soup);
         rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometry(scene, geom);
+        rtcReleaseGeometry(geom);
+    }
+
+    /** The voxel maps' boxes as one user geometry: a triangle box would take 12 primitives. */
+    void addVoxelMaps(const WorldSpec& world) {
+        for (const auto& map : world.voxelMaps)
+            for (const auto& b : map.boxes)
+                voxelBoxes.push_back({{float(b.min.x()), float(b.min.y()), float(b.min.z())},
+                                      {float(b.max.x()), float(b.max.y()), float(b.max.z())}});
+        if (voxelBoxes.empty())
+            return;
+        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(geom, unsigned(voxelBoxes.size()));
+        rtcSetGeometryUserData(geom, voxelBoxes.data());
+        rtcSetGeometryBoundsFunction(geom, voxelBoxBounds, nullptr);
+        rtcSetGeometryIntersectFunction(geom, intersectVoxelBoxes);
+        rtcSetGeometryOccludedFunction(geom, occludedByVoxelBoxes);
         rtcCommitGeometry(geom);
         rtcAttachGeometry(scene, geom);
         rtcReleaseGeometry(geom);
@@ -177,6 +274,7 @@ RayCaster::RayCaster(const WorldSpec& world) : impl_(std::make_unique<Impl>()) {
     // Two-level BVH: moving the people rebuilds only their small geometry.
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_DYNAMIC);
     impl_->addStatic(world);
+    impl_->addVoxelMaps(world);
 
     rtcCommitScene(impl_->scene);
     impl_->check("building the static scene");

@@ -214,9 +214,9 @@ bool isUpright(const CylinderShape& c) {
 }
 
 /**
- * Marks the solid cells: axis-aligned boxes straight from their bounds, upright cylinders from
- * the distance to their axis, every other shape's bounds as candidates that the exact overlap
- * test then decides.
+ * Marks the solid cells: axis-aligned boxes (voxel maps' too) straight from their bounds, upright
+ * cylinders from the distance to their axis, every other shape's bounds as candidates that the
+ * exact overlap test then decides.
  */
 void markSolid(const WorldSpec& world, Grid& grid) {
     for (const auto& b : world.boxes)
@@ -234,6 +234,9 @@ void markSolid(const WorldSpec& world, Grid& grid) {
                 b.extend(m.vertices[std::size_t(t[v])].cast<double>());
             grid.mark(b, kCandidate);
         }
+    for (const auto& map : world.voxelMaps)
+        for (const auto& b : map.boxes)
+            grid.mark({b.min, b.max}, kSolid);
     const StaticCollisionChecker exact(world);
     const Eigen::Vector3d size = Eigen::Vector3d::Constant(grid.res() * (1.0 - 2.0 * kTouch));
     for (std::size_t i = 0; i < grid.size(); ++i)

@@ -13,7 +13,7 @@ namespace {
 
 using Box3 = Eigen::AlignedBox3d;
 
-enum class Kind : std::uint8_t { Box, Prism, Triangle };
+enum class Kind : std::uint8_t { Box, Prism, Triangle, AlignedBox };
 
 struct Primitive {
     Box3 bounds;
@@ -153,11 +153,23 @@ bool overlapsTriangle(const Obb& box, const std::array<Eigen::Vector3d, 3>& t) {
     return overlapsConvex(box, {t.data(), 3, &normal, normalCount, edges.data(), 3});
 }
 
+const std::array<Eigen::Vector3d, 3> kUnitAxes = {
+    Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
+
+/** A voxel map's box: axis-aligned, so its corners are all the SAT needs besides the axes. */
+bool overlapsAligned(const Obb& box, const Box3& aligned) {
+    std::array<Eigen::Vector3d, 8> corners;
+    for (int i = 0; i < 8; ++i)
+        corners[std::size_t(i)] = aligned.corner(Box3::CornerType(i));
+    return overlapsConvex(box, {corners.data(), 8, kUnitAxes.data(), 3, kUnitAxes.data(), 3});
+}
+
 }  // namespace
 
 struct StaticCollisionChecker::Impl {
     std::vector<Polytope> polytopes;
     std::vector<std::array<Eigen::Vector3d, 3>> triangles;
+    std::vector<Box3> alignedBoxes;
     Bvh bvh;
 
     explicit Impl(const WorldSpec& world) {
@@ -181,12 +193,20 @@ struct StaticCollisionChecker::Impl {
                 b.extend(v);
             prims.push_back({b, Kind::Triangle, i});
         }
+        for (const auto& map : world.voxelMaps)
+            for (const auto& b : map.boxes) {
+                prims.push_back(
+                    {Box3(b.min, b.max), Kind::AlignedBox, std::uint32_t(alignedBoxes.size())});
+                alignedBoxes.emplace_back(b.min, b.max);
+            }
         bvh.build(std::move(prims));
     }
 
     bool test(const Primitive& p, const Obb& box) const {
         if (p.kind == Kind::Triangle)
             return overlapsTriangle(box, triangles[p.index]);
+        if (p.kind == Kind::AlignedBox)
+            return overlapsAligned(box, alignedBoxes[p.index]);
         return overlapsConvex(box, polytopes[p.index].view());
     }
 };

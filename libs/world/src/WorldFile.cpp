@@ -13,8 +13,10 @@
 
 #include "MeshImport.h"
 #include "Shapes.h"
+#include "StderrCapture.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
+#include "daep/world/VoxelMaps.h"
 #include "daep/world/WorldSpec.h"
 
 namespace fs = std::filesystem;
@@ -141,6 +143,7 @@ public:
     }
 
     const std::string& path() const { return path_; }
+    bool isScalar() const { return node_->isScalar(); }
 
 private:
     void requireMap() const {
@@ -167,47 +170,6 @@ private:
     std::string path_;
     int line0_;
     const std::string* file_;
-};
-
-/**
- * libfyaml (inside MRPT's parser) reports syntax errors with line:column only on stderr, so
- * stderr is redirected to a temporary file while parsing.
- */
-class StderrCapture {
-public:
-    StderrCapture() {
-        std::fflush(stderr);
-        tmp_ = std::tmpfile();
-        if (tmp_ != nullptr)
-            saved_ = ::dup(STDERR_FILENO);
-        if (saved_ >= 0)
-            ::dup2(::fileno(tmp_), STDERR_FILENO);
-    }
-    ~StderrCapture() { finish(); }
-    StderrCapture(const StderrCapture&) = delete;
-    StderrCapture& operator=(const StderrCapture&) = delete;
-
-    std::string finish() {
-        std::string text;
-        if (tmp_ == nullptr)
-            return text;
-        std::fflush(stderr);
-        if (saved_ >= 0) {
-            ::dup2(saved_, STDERR_FILENO);
-            ::close(saved_);
-        }
-        std::rewind(tmp_);
-        char buf[4096];
-        for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, tmp_)) > 0;)
-            text.append(buf, n);
-        std::fclose(tmp_);
-        tmp_ = nullptr;
-        return text;
-    }
-
-private:
-    std::FILE* tmp_ = nullptr;
-    int saved_ = -1;
 };
 
 std::size_t indentOf(const std::string& line) {
@@ -391,6 +353,57 @@ PersonRoute parsePerson(const Field& f) {
     return route;
 }
 
+/** A data file named by a world key, relative to the world file's directory. */
+std::string dataFile(const Field& fileField, const fs::path& baseDir, const std::string& what) {
+    const std::string rel = fileField.text();
+    const fs::path file = fs::path(rel).is_absolute() ? fs::path(rel) : baseDir / rel;
+    if (!fs::is_regular_file(file))
+        fileField.fail(what + " file '" + rel + "' not found (looked for " + file.string() + ")");
+    return file.string();
+}
+
+/** Runs a voxel map loader; its InputError (naming the data file) gets the world file's line. */
+template <typename Load>
+VoxelMap loadVoxels(const Field& fileField, Load&& load) {
+    try {
+        return load();
+    } catch (const InputError& e) {
+        fileField.fail(e.what());
+    }
+}
+
+/** `octomap: FILE` or `octomap: {file: FILE, position: [x, y, z]}`. */
+VoxelMap parseOctomap(const Field& f, const fs::path& baseDir) {
+    if (f.isScalar()) {
+        const std::string file = dataFile(f, baseDir, "octomap");
+        return loadVoxels(f, [&] { return loadOctomap(file, Eigen::Vector3d::Zero()); });
+    }
+    f.allowOnly({"file", "position"});
+    const Field fileField = f.at("file");
+    const std::string file = dataFile(fileField, baseDir, "octomap");
+    const auto position = f.find("position");
+    const Eigen::Vector3d offset = position ? position->vec3() : Eigen::Vector3d::Zero();
+    return loadVoxels(fileField, [&] { return loadOctomap(file, offset); });
+}
+
+/** `point_cloud: {file: FILE.ply, voxel_size: S, position: [x, y, z]}`. */
+VoxelMap parsePointCloud(const Field& f, const fs::path& baseDir) {
+    f.allowOnly({"file", "voxel_size", "position"});
+    const Field fileField = f.at("file");
+    const std::string file = dataFile(fileField, baseDir, "point cloud");
+    const double voxelSize = f.at("voxel_size").positive();
+    const auto position = f.find("position");
+    const Eigen::Vector3d offset = position ? position->vec3() : Eigen::Vector3d::Zero();
+    return loadVoxels(fileField, [&] { return voxelisePointCloud(file, voxelSize, offset); });
+}
+
+void parseVoxelMaps(const Field& top, const fs::path& baseDir, WorldSpec& w) {
+    if (const auto f = top.find("octomap"))
+        w.voxelMaps.push_back(parseOctomap(*f, baseDir));
+    if (const auto f = top.find("point_cloud"))
+        w.voxelMaps.push_back(parsePointCloud(*f, baseDir));
+}
+
 template <typename Parse>
 void parseList(const Field& top, const std::string& key, Parse&& parse) {
     if (const auto list = top.find(key)) {
@@ -412,7 +425,7 @@ BoxShape groundSlab(const WorldSpec& world) {
 
 void parseTop(const Field& top, const std::string& path, WorldSpec& w) {
     top.allowOnly({"name", "description", "exploration_box", "exploration_volume", "starts",
-                   "ground", "boxes", "cylinders", "meshes", "people"});
+                   "ground", "boxes", "cylinders", "meshes", "people", "octomap", "point_cloud"});
     const auto name = top.find("name");
     w.name = name ? name->text() : fs::path(path).stem().string();
     if (const auto d = top.find("description"))
@@ -431,6 +444,7 @@ void parseTop(const Field& top, const std::string& path, WorldSpec& w) {
     parseList(top, "boxes", [&](const Field& f) { w.boxes.push_back(parseBox(f)); });
     parseList(top, "cylinders", [&](const Field& f) { w.cylinders.push_back(parseCylinder(f)); });
     parseList(top, "meshes", [&](const Field& f) { w.meshes.push_back(parseMesh(f, baseDir)); });
+    parseVoxelMaps(top, baseDir, w);
     parseList(top, "people", [&](const Field& f) { w.people.push_back(parsePerson(f)); });
 
     const auto ground = top.find("ground");
@@ -458,6 +472,11 @@ Aabb WorldSpec::bounds() const {
     for (const auto& mesh : meshes)
         for (const auto& v : mesh.vertices)
             extend(b, v.cast<double>());
+    for (const auto& map : voxelMaps)
+        for (const auto& box : map.boxes) {
+            extend(b, box.min);
+            extend(b, box.max);
+        }
     return b;
 }
 

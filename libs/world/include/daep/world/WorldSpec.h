@@ -32,6 +32,19 @@ struct TriangleMesh {
     std::vector<Eigen::Vector3i> triangles;
 };
 
+/**
+ * Solid axis-aligned boxes from a voxel map: an OctoMap's occupied leaves or a voxelised point
+ * cloud, in world coordinates. Neighbouring cells are merged into larger boxes where they line
+ * up, so a map of many cells stays a moderate number of boxes.
+ */
+struct VoxelMap {
+    std::string name;
+    std::string source;       ///< file it was loaded from, for messages
+    double resolution = 0.0;  ///< the map's finest cell size, m
+    std::size_t cells = 0;    ///< occupied cells of that size the boxes cover
+    std::vector<Aabb> boxes;
+};
+
 /** A person walks its waypoints in order, then back to the first, forever. */
 struct PersonRoute {
     std::string name;
@@ -47,6 +60,7 @@ struct WorldSpec {
     std::vector<BoxShape> boxes;
     std::vector<CylinderShape> cylinders;
     std::vector<TriangleMesh> meshes;
+    std::vector<VoxelMap> voxelMaps;      ///< `octomap` and `point_cloud` geometry
     std::vector<Eigen::Vector3d> starts;  ///< spawn positions (the drone then climbs 1 m)
     std::vector<PersonRoute> people;      ///< empty routes in static mode
     /** `exploration_volume` from the world file (m^3), 0 when absent. */
