@@ -13,6 +13,8 @@
 
 #include "MeshImport.h"
 #include "Shapes.h"
+#include "WorldValidation.h"
+#include "YamlDuplicateKeys.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/world/WorldSpec.h"
@@ -464,6 +466,9 @@ Aabb WorldSpec::bounds() const {
 WorldSpec loadWorldFile(const std::string& path) {
     const std::string text = readText(path);
     const yaml doc = parseYaml(text, path);
+    if (const auto dup = findDuplicateKey(text))
+        throw InputError(path + ":" + std::to_string(dup->line) + ": duplicate key '" + dup->key +
+                         "' (first given on line " + std::to_string(dup->firstLine) + ")");
     const YNode& root = doc.node();
     if (!root.isMap())
         throw InputError(path +
@@ -472,6 +477,7 @@ WorldSpec loadWorldFile(const std::string& path) {
     WorldSpec world;
     world.sourceFile = path;
     parseTop(Field(root, "", -1, path), path, world);
+    validateWorld(world);
     return world;
 }
 
