@@ -47,10 +47,13 @@ template <typename Vec>
 void requireInRange(const WorldSpec& w, const Vec& v, const std::string& item) {
     if (!v.allFinite())
         fail(w, item + ": a coordinate is not a finite number");
-    if (v.cwiseAbs().maxCoeff() > kMaxCoordinate)
-        fail(w, item + ": coordinate " + std::to_string(v.cwiseAbs().maxCoeff()) +
-                    " m lies farther than " + std::to_string(static_cast<int>(kMaxCoordinate)) +
-                    " m from the origin");
+    if (v.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf,
+                      ": coordinate %.6g m lies farther than %.0f m from the origin",
+                      v.cwiseAbs().maxCoeff(), kMaxCoordinate);
+        fail(w, item + buf);
+    }
 }
 
 void checkCoordinates(const WorldSpec& w) {
@@ -64,11 +67,6 @@ void checkCoordinates(const WorldSpec& w) {
                     " m^3 a map can hold");
     for (std::size_t i = 0; i < w.starts.size(); ++i)
         requireInRange(w, w.starts[i], "starts[" + std::to_string(i) + "]");
-    for (std::size_t i = 0; i < w.boxes.size(); ++i) {
-        const std::string item = "boxes[" + std::to_string(i) + "]" + quotedName(w.boxes[i].name);
-        requireInRange(w, w.boxes[i].pose.translation(), item + " center");
-        requireInRange(w, w.boxes[i].size, item + " size");
-    }
     for (std::size_t i = 0; i < w.cylinders.size(); ++i) {
         const CylinderShape& c = w.cylinders[i];
         const std::string item = "cylinders[" + std::to_string(i) + "]" + quotedName(c.name);
@@ -88,6 +86,12 @@ void checkCoordinates(const WorldSpec& w) {
             requireInRange(w, w.people[i].waypoints[j],
                            "people[" + std::to_string(i) + "]" + quotedName(w.people[i].name) +
                                " waypoint " + std::to_string(j));
+    // Last: the ground slab is sized from the rest, so a far shape is named before it.
+    for (std::size_t i = 0; i < w.boxes.size(); ++i) {
+        const std::string item = "boxes[" + std::to_string(i) + "]" + quotedName(w.boxes[i].name);
+        requireInRange(w, w.boxes[i].pose.translation(), item + " center");
+        requireInRange(w, w.boxes[i].size, item + " size");
+    }
 }
 
 /** The shapes of `w` one at a time, for naming the one a probe hits. */
