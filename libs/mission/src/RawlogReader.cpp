@@ -117,7 +117,7 @@ struct RawlogReader::Impl {
             fail("corrupt rawlog: " + where(objects + 1) + " declares more data than memory holds");
         } catch (const std::exception& e) {
             const std::string reason = oneLineReason(e);
-            if (isEndOfData(reason))
+            if (isEndOfData(reason) || in.checkEOF())
                 fail("truncated rawlog: the file ends inside " + where(objects + 1));
             fail((objects == 0 ? "not an MRPT rawlog: " : "corrupt rawlog: ") + where(objects + 1) +
                  " is unreadable: " + reason);
