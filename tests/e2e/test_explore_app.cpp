@@ -209,7 +209,7 @@ std::vector<BadInputCase> badInputCases() {
                "  - {name: block, center: [0, 0, 0.5], size: [1, 1, 1]}\n";
         const std::string ini =
             writeIni("start_inside", tinyIniWith("", (dir / "blocked.yaml").string()));
-        cases.push_back({"start_inside", ini, {"blocked.yaml", "start 0", "inside"}});
+        cases.push_back({"start_inside", ini, {"blocked.yaml", "starts[0]", "inside", "'block'"}});
     }
     return cases;
 }

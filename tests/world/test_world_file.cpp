@@ -29,7 +29,7 @@ ground: true
 boxes:
   - {name: b1, center: [1, 2, 0.5], size: [1, 2, 1], yaw_deg: 90}
   - name: b2
-    center: [0, 0, 1]
+    center: [0, 3, 1]
     size: [0.5, 0.5, 0.5]
     rpy_deg: [90, 0, 0]
 cylinders:

@@ -11,7 +11,10 @@
 #include <random>
 #include <sstream>
 
+#include <octomap/OcTree.h>
+
 #include "ComponentParams.h"
+#include "MemoryLog.h"
 #include "MissionSetup.h"
 #include "Outputs.h"
 #include "RawlogRecorder.h"
@@ -80,7 +83,8 @@ struct Mission::Impl {
           log(logStream),
           recorder(outputDir),
           outputs(loadOutputParams(config.config())),
-          scene(outputs, outputDir, logStream) {
+          scene(outputs, outputDir, logStream),
+          memory(recorder.path("memory.csv"), outputs.memoryEvery) {
         checkStartIsFree();
         // People the planner does not keep out of the map enter it as occupied cells.
         map.setPeopleMapped(!world.people.empty() &&
@@ -189,6 +193,8 @@ struct Mission::Impl {
             nextSample += settings.sampleEvery;
             printProgressIfDue(s);
         }
+        while (exploring() && memory.due(explorationTime()))
+            memory.addDue(map.knownVolumeInBox(), map.octree().size());
     }
 
     void printProgressIfDue(const eval::MetricsSample& s) {
@@ -395,6 +401,7 @@ struct Mission::Impl {
     mrpt::obs::CObservation3DRangeScan frame;
     OutputParams outputs;
     SceneExporter scene;
+    MemoryLog memory;
     std::unique_ptr<RawlogRecorder> rawlog;
     std::vector<Eigen::Vector3d> trajectory;  ///< flown path, for the scene
     std::vector<int> collisionTracked;        ///< per monitor event, see trackedAtCollision
@@ -443,6 +450,7 @@ eval::RunSummary Mission::run() {
     if (m.endReason.empty())
         m.endReason = "interrupted";
     const eval::RunSummary summary = m.summarize(secondsSince(t0));
+    m.memory.addFinal(m.explorationTime(), m.map.knownVolumeInBox(), m.map.octree().size());
     m.recorder.flush();
     m.recorder.writeSummary(summary);
     m.recorder.writeTiming(summary.wallTime, m.t);
@@ -453,6 +461,8 @@ eval::RunSummary Mission::run() {
         m.rawlog->close();
     if (m.outputs.scene)
         m.writeScene();
+    m.memory.writePlot(m.recorder.path("memory.png"),
+                       "Memory: " + m.settings.plannerName + ", " + m.world.name);
     if (failure)
         std::rethrow_exception(failure);
     return summary;

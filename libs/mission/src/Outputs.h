@@ -14,6 +14,8 @@ struct OutputParams {
     bool renderPng = true;    ///< DIR/scene_perspective.png and DIR/scene_top.png
     int pngWidth = 1280;
     int pngHeight = 960;
+    double memoryEvery =
+        600.0;  ///< DIR/memory.csv every this many seconds of exploration; 0 = none
 };
 
 OutputParams loadOutputParams(const mrpt::config::CConfigFileBase& cfg);

@@ -120,6 +120,15 @@ private:
     std::ofstream out_;
 };
 
+RawlogFrame firstFrame(RawlogReader& reader, const RawlogParams& params) {
+    RawlogFrame frame;
+    if (!reader.next(frame))
+        throw InputError(params.file +
+                         ": no depth frames (CObservation3DRangeScan with a range image" +
+                         (params.sensorLabel.empty() ? "" : ", label " + params.sensorLabel) + ")");
+    return frame;
+}
+
 std::string planStatus(const planning::Plan& plan) {
     return plan.status == planning::Plan::Status::Finished ? "finished" : "path";
 }
@@ -140,6 +149,7 @@ struct RawlogMission::Impl {
         : settings(loadSettings(config)),
           params(loadRawlogParams(config)),
           reader(params.file, params.sensorLabel, params.poseLabel),
+          frame(firstFrame(reader, params)),
           drone(loadDroneParams(config.config())),
           planner(planning::createPlanner(settings.plannerName, config.config(),
                                           settings.seed * 0x9E3779B97F4A7C15ull + 1)),
@@ -151,10 +161,6 @@ struct RawlogMission::Impl {
           tracker(loadTrackerParams(config.config())),
           bodySize(loadPeopleParams(config.config()).bodySize),
           peopleCsv(recorder.path("people.csv")) {
-        if (!reader.next(frame))
-            throw InputError(
-                params.file + ": no depth frames (CObservation3DRangeScan with a " + "range image" +
-                (params.sensorLabel.empty() ? "" : ", label " + params.sensorLabel) + ")");
         firstStamp = frame.stamp;
         setUpBox(config);
         map.emplace(loadMapParams(config.config()), box);
@@ -310,6 +316,7 @@ struct RawlogMission::Impl {
     Settings settings;
     RawlogParams params;
     RawlogReader reader;
+    RawlogFrame frame;  ///< read before any output exists: a file that is no rawlog leaves none
     sim::DroneParams drone;
     std::unique_ptr<planning::ExplorationPlanner> planner;
     std::ostream* log;
@@ -320,7 +327,6 @@ struct RawlogMission::Impl {
     perception::PeopleTracker tracker;
     Eigen::Vector3d bodySize;  ///< of the people the detector looks for
     PeopleCsv peopleCsv;
-    RawlogFrame frame;
     Aabb box;
     double boxVolume = 0.0;
     std::string worldName;

@@ -9,9 +9,11 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <cmath>
 #include <deque>
 #include <filesystem>
 #include <map>
+#include <new>
 
 #include "daep/common/Error.h"
 
@@ -38,6 +40,46 @@ int personIndex(const std::string& label) {
     return std::stoi(digits);
 }
 
+/** Longest gap between consecutive depth frames, s: a larger jump is a corrupt timestamp. */
+constexpr double kMaxFrameGap = 3600.0;
+/** Farthest a rawlog pose may lie from the origin, m (the map's octree reaches +-6.5 km). */
+constexpr double kMaxCoordinate = 5000.0;
+constexpr int kMaxImageSide = 16384;
+
+/**
+ * One printable line from an MRPT exception: the innermost "Message:" of its nested report
+ * (without the backtraces), else the first line; bytes a corrupt file put in it (a garbled
+ * class name) become '?'.
+ */
+std::string oneLineReason(const std::exception& e) {
+    std::string what = e.what();
+    if (const auto at = what.rfind("Message:"); at != std::string::npos)
+        what = what.substr(at + 8);
+    what = what.substr(0, what.find('\n'));
+    if (const auto hint = what.find(" (Perhaps it's a gz"); hint != std::string::npos)
+        what.resize(hint);
+    std::string out;
+    for (const char c : what)
+        out += (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) ? '?'
+                                                                                              : c;
+    const auto b = out.find_first_not_of(' ');
+    out = b == std::string::npos ? std::string() : out.substr(b);
+    if (out.size() > 200)
+        out = out.substr(0, 200) + "...";
+    return out.empty() ? "unknown error" : out;
+}
+
+bool isEndOfData(const std::string& reason) {
+    return reason.find("EOF") != std::string::npos;
+}
+
+bool finitePose(const mrpt::poses::CPose3D& p) {
+    for (const double v : {p.x(), p.y(), p.z(), p.yaw(), p.pitch(), p.roll()})
+        if (!std::isfinite(v) || std::abs(v) > kMaxCoordinate)
+            return false;
+    return true;
+}
+
 }  // namespace
 
 struct RawlogReader::Impl {
@@ -50,8 +92,16 @@ struct RawlogReader::Impl {
     FlatPose latestPose;
     bool hasPose = false;
     std::map<int, FlatPose> people;
+    std::size_t framesEmitted = 0;
+    double lastFrameStamp = 0.0;
 
     [[noreturn]] void fail(const std::string& what) const { throw InputError(path + ": " + what); }
+
+    /** "object N (after K depth frames)": where in the file a problem is. */
+    std::string where(std::size_t object) const {
+        return "object " + std::to_string(object) + " (after " + std::to_string(framesEmitted) +
+               " depth frames)";
+    }
 
     /** The next serialized object, or nullptr at a clean end of file. */
     mrpt::serialization::CSerializable::Ptr readObject() {
@@ -61,11 +111,16 @@ struct RawlogReader::Impl {
             mrpt::serialization::archiveFrom(in) >> obj;
         } catch (const mrpt::serialization::CExceptionEOF&) {
             if (in.getPosition() != before)
-                fail("truncated rawlog (object " + std::to_string(objects + 1) + ")");
+                fail("truncated rawlog: the file ends inside " + where(objects + 1));
             return nullptr;
+        } catch (const std::bad_alloc&) {
+            fail("corrupt rawlog: " + where(objects + 1) + " declares more data than memory holds");
         } catch (const std::exception& e) {
-            fail("not a readable MRPT rawlog (object " + std::to_string(objects + 1) +
-                 "): " + e.what());
+            const std::string reason = oneLineReason(e);
+            if (isEndOfData(reason) || in.checkEOF())
+                fail("truncated rawlog: the file ends inside " + where(objects + 1));
+            fail((objects == 0 ? "not an MRPT rawlog: " : "corrupt rawlog: ") + where(objects + 1) +
+                 " is unreadable: " + reason);
         }
         ++objects;
         return obj;
@@ -95,15 +150,51 @@ struct RawlogReader::Impl {
         try {
             scan->load();  // externally stored images (<rawlog>_Images/)
         } catch (const std::exception& e) {
-            fail("cannot load the external data of a depth frame: " + std::string(e.what()));
+            fail("cannot load the external data of a depth frame: " + oneLineReason(e));
         }
-        return scan->hasRangeImage ? scan : nullptr;
+        if (!scan->hasRangeImage)
+            return nullptr;
+        checkDepthFrame(*scan);
+        return scan;
+    }
+
+    /** What the mapping and the detector index or divide by must make sense. */
+    void checkDepthFrame(const mrpt::obs::CObservation3DRangeScan& scan) const {
+        const std::string frame = "depth frame " + std::to_string(framesEmitted + 1) + " (object " +
+                                  std::to_string(objects) + ")";
+        const auto rows = scan.rangeImage.rows(), cols = scan.rangeImage.cols();
+        if (rows < 1 || cols < 1 || rows > kMaxImageSide || cols > kMaxImageSide)
+            fail("corrupt " + frame + ": range image of " + std::to_string(cols) + " x " +
+                 std::to_string(rows) + " pixels");
+        const auto& cam = scan.cameraParams;
+        if (!(cam.fx() > 0 && std::isfinite(cam.fx()) && cam.fy() > 0 && std::isfinite(cam.fy()) &&
+              std::isfinite(cam.cx()) && std::isfinite(cam.cy())))
+            fail("corrupt " + frame + ": camera intrinsics are not finite positive numbers");
+        if (!(scan.rangeUnits > 0 && std::isfinite(scan.rangeUnits)))
+            fail("corrupt " + frame + ": range units are not a finite positive number");
+        if (!finitePose(scan.sensorPose))
+            fail("corrupt " + frame + ": the sensor pose is not finite or lies beyond " +
+                 std::to_string(static_cast<int>(kMaxCoordinate)) + " m");
+        const double stamp = mrpt::Clock::toDouble(scan.timestamp);
+        if (!std::isfinite(stamp))
+            fail("corrupt " + frame + ": the timestamp is not a number");
+        if (framesEmitted > 0 && stamp < lastFrameStamp)
+            fail("corrupt " + frame + ": its timestamp is " +
+                 std::to_string(lastFrameStamp - stamp) + " s before the previous frame's");
+        if (framesEmitted > 0 && stamp > lastFrameStamp + kMaxFrameGap)
+            fail("corrupt " + frame + ": its timestamp jumps " +
+                 std::to_string(stamp - lastFrameStamp) + " s past the previous frame's");
     }
 
     bool takePose(const ObservationPtr& o) {
         auto pose = std::dynamic_pointer_cast<mrpt::obs::CObservationRobotPose>(o);
         if (!pose)
             return false;
+        const bool mine = pose->sensorLabel == poseLabel || personIndex(pose->sensorLabel) >= 0;
+        if (mine && !finitePose(pose->pose.mean))
+            fail("corrupt rawlog: pose '" + pose->sensorLabel + "' in " + where(objects) +
+                 " is not finite or lies beyond " +
+                 std::to_string(static_cast<int>(kMaxCoordinate)) + " m");
         if (pose->sensorLabel == poseLabel) {
             latestPose = flatPose(pose->pose.mean);
             hasPose = true;
@@ -122,6 +213,8 @@ struct RawlogReader::Impl {
         frame.robot = hasPose ? latestPose : FlatPose{};
         frame.people = people;
         pending.reset();
+        lastFrameStamp = frame.stamp;
+        ++framesEmitted;
     }
 };
 

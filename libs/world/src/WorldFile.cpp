@@ -14,6 +14,8 @@
 #include "MeshImport.h"
 #include "Shapes.h"
 #include "StderrCapture.h"
+#include "WorldValidation.h"
+#include "YamlDuplicateKeys.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/world/VoxelMaps.h"
@@ -483,6 +485,9 @@ Aabb WorldSpec::bounds() const {
 WorldSpec loadWorldFile(const std::string& path) {
     const std::string text = readText(path);
     const yaml doc = parseYaml(text, path);
+    if (const auto dup = findDuplicateKey(text))
+        throw InputError(path + ":" + std::to_string(dup->line) + ": duplicate key '" + dup->key +
+                         "' (first given on line " + std::to_string(dup->firstLine) + ")");
     const YNode& root = doc.node();
     if (!root.isMap())
         throw InputError(path +
@@ -491,6 +496,7 @@ WorldSpec loadWorldFile(const std::string& path) {
     WorldSpec world;
     world.sourceFile = path;
     parseTop(Field(root, "", -1, path), path, world);
+    validateWorld(world);
     return world;
 }
 
