@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs; does nothing when all are present.
+# clang-14, libclang-rt-14-dev (libFuzzer, sanitizer runtimes) and llvm-14 (llvm-symbolizer for
+# readable sanitizer stacks) serve `make sanitize` and `make fuzz`.
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,7 @@ packages=(
   libembree-dev libassimp-dev libnanoflann-dev libtinyxml2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libopengl0
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 missing=()
