@@ -19,8 +19,9 @@ function(daep_add_module name)
 endfunction()
 
 function(daep_set_warnings target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local
-                                           -Wno-psabi)
+  # clang has no -Wshadow=local; its nearest is -Wshadow-uncaptured-local.
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic
+    $<IF:$<CXX_COMPILER_ID:GNU>,-Wshadow=local,-Wshadow-uncaptured-local> -Wno-psabi)
 endfunction()
 
 # daep_add_gtest(<name> DEPS <targets>...): tests/<module>/*.cpp as one GoogleTest binary.

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs; does nothing when all are present.
+# clang-14, libclang-rt-14-dev (libFuzzer, sanitizer runtimes) and llvm-14 (llvm-symbolizer for
+# readable sanitizer stacks) serve `make sanitize` and `make fuzz`.
 set -euo pipefail
 
 packages=(
@@ -11,6 +13,7 @@ packages=(
   nlohmann-json3-dev libssl-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libopengl0
   libcairo2-dev fonts-dejavu-core
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 missing=()

@@ -58,6 +58,18 @@ TEST(ConfigReader, MissingAndMalformedKeysNameSourceSectionAndKey) {
     EXPECT_NE(errorOf([&] { r.requireBool("name"); }).find("not a boolean"), std::string::npos);
 }
 
+// Seen while writing fuzz_experiment_ini (not a sanitizer error): start = 4294967296 was silently
+// read as start 0.
+TEST(ConfigReader, IntegersBeyondAnIntAreErrors) {
+    mrpt::config::CConfigFileMemory cfg;
+    cfg.write("experiment", "start", "4294967296");
+    cfg.write("experiment", "seed", "-2147483648");
+    const ConfigReader r(cfg, "experiment", "test.ini");
+    EXPECT_EQ(errorOf([&] { r.requireInt("start"); }),
+              "test.ini: [experiment] start: '4294967296' is out of range");
+    EXPECT_EQ(r.requireInt("seed"), -2147483648LL);
+}
+
 TEST(Types, WrapAngleStaysInHalfOpenInterval) {
     for (double a = -20.0; a <= 20.0; a += 0.37) {
         const double w = daep::wrapAngle(a);

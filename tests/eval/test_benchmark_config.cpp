@@ -171,6 +171,24 @@ TEST_F(BenchmarkConfigTest, ErrorsNameFileLineAndKey) {
     EXPECT_NE(errorOf(text).find(file + ":9: duplicate key [benchmark] seed"), std::string::npos);
 }
 
+// Found by fuzz_benchmark_config: seed + repetition overflowed an int in expand(), and a huge
+// matrix or start range exhausted memory (or took hours) before any run started.
+TEST_F(BenchmarkConfigTest, RejectsMatricesBeyondAnIntOrAMillionRuns) {
+    const std::string file = (dir_ / "bench.ini").string();
+    std::string text = kValid;
+    text.replace(text.find("seed = 10"), 9, "seed = 2147483647");
+    EXPECT_EQ(errorOf(text), file + ":8: [benchmark] seed: seed + repetitions - 1 must fit an int");
+    EXPECT_EQ(errorOf(kValid, {"benchmark.repetitions=100000"}),
+              "--set benchmark.repetitions: [benchmark] repetitions: the matrix has 1200000 runs "
+              "(at most 1000000)");
+    EXPECT_EQ(errorOf(kValid, {"benchmark.starts=0-2147483647"}),
+              "--set benchmark.starts: [benchmark] starts: more than 10000 values");
+    const auto cfg = loadBenchmarkConfig(
+        write(kValid), {"benchmark.starts=2147483647", "benchmark.seed=2147483646"});
+    EXPECT_EQ(cfg.starts, (std::vector<int>{2147483647}));
+    EXPECT_EQ(cfg.expand().back().seed, 2147483647);
+}
+
 TEST(BenchmarkIntList, ParsesRangesAndListsAndRejectsJunk) {
     EXPECT_EQ(parseIntList("0-4"), (std::vector<int>{0, 1, 2, 3, 4}));
     EXPECT_EQ(parseIntList("0, 2"), (std::vector<int>{0, 2}));

@@ -116,6 +116,21 @@ TEST(PredictionEval, LoaderNamesTheBadLine) {
     }
 }
 
+// Found by fuzz_eth_ucy: a frame of 1e300 was cast to int (undefined behaviour).
+TEST(PredictionEval, LoaderRejectsFramesAndIdsThatAreNoIntegers) {
+    for (const std::string line : {"1e300 1 0 0", "0 -3e9 0 0", "0.5 1 0 0", "0 1.25 0 0"}) {
+        const auto path = tempFile("ids.txt", "0 1 0.0 0.0\n" + line + "\n");
+        try {
+            loadPedestrianTracks(path.string());
+            FAIL() << line;
+        } catch (const daep::InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("ids.txt:2: frame and id must be integers"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 TEST(PredictionEval, StraightWalkersArePredictedAlmostExactlyAndOnlyFullWindowsCount) {
     std::string text;
     for (int f = 0; f < 30; ++f) {

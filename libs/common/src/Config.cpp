@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "daep/common/Error.h"
@@ -63,6 +64,8 @@ int ConfigReader::requireInt(const std::string& key) const {
     long long i = 0;
     if (!(is >> i) || !is.eof())
         fail(key, "'" + v + "' is not an integer");
+    if (i < std::numeric_limits<int>::min() || i > std::numeric_limits<int>::max())
+        fail(key, "'" + v + "' is out of range");
     return static_cast<int>(i);
 }
 

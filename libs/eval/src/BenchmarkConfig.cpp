@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -18,6 +20,10 @@ namespace {
 
 const std::vector<std::string> kBenchmarkKeys = {"planners",    "worlds", "modes",     "starts",
                                                  "repetitions", "seed",   "experiment"};
+/** Far beyond any real experiment; more would only exhaust memory while expanding. */
+constexpr std::uint64_t kMaxRuns = 1000000;
+constexpr int kMaxListValues = 10000;
+
 /** Set per run by the matrix, so [set] must not name them. */
 const std::set<std::string> kMatrixKeys = {"experiment.world", "experiment.mode",
                                            "experiment.planner", "experiment.start",
@@ -108,6 +114,13 @@ public:
         if (cfg.repetitions < 1)
             fail("repetitions", "must be at least 1");
         cfg.seed = integer("seed");
+        if (cfg.seed > std::numeric_limits<int>::max() - (cfg.repetitions - 1))
+            fail("seed", "seed + repetitions - 1 must fit an int");
+        const std::uint64_t runs = std::uint64_t(cfg.planners.size()) * cfg.worlds.size() *
+                                   cfg.modes.size() * cfg.starts.size() * cfg.repetitions;
+        if (runs > kMaxRuns)
+            fail("repetitions", "the matrix has " + std::to_string(runs) + " runs (at most " +
+                                    std::to_string(kMaxRuns) + ")");
         cfg.experiment = experimentPath();
         cfg.sets = sets_;
         for (const auto& [key, entry] : values_)
@@ -235,6 +248,7 @@ std::string BenchmarkConfig::where(const std::string& key) const {
 
 std::vector<int> parseIntList(const std::string& text) {
     std::vector<int> values;
+    std::set<int> seen;
     const auto items = splitList(text);
     if (items.empty())
         throw InputError("empty list");
@@ -245,10 +259,12 @@ std::vector<int> parseIntList(const std::string& text) {
             dash == std::string::npos ? lo : parseInt(trimBlanks(item.substr(dash + 1)), "range");
         if (lo < 0 || hi < lo)
             throw InputError("bad range '" + item + "'");
-        for (int v = lo; v <= hi; ++v) {
-            if (std::find(values.begin(), values.end(), v) != values.end())
+        if (hi - lo >= kMaxListValues - static_cast<int>(values.size()))
+            throw InputError("more than " + std::to_string(kMaxListValues) + " values");
+        for (long long v = lo; v <= hi; ++v) {  // long long: hi may be INT_MAX
+            if (!seen.insert(static_cast<int>(v)).second)
                 throw InputError(std::to_string(v) + " listed twice");
-            values.push_back(v);
+            values.push_back(static_cast<int>(v));
         }
     }
     return values;

@@ -78,7 +78,10 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
 }
 
 bool ExplorationMap::Impl::axisKeyOf(double c, octomap::key_type& k) const {
-    return std::isfinite(c) && tree.coordToKeyChecked(c, k);
+    // OctoMap casts c / resolution to int unchecked (undefined beyond int, found by UBSan);
+    // keys span +-2^15 cells, so anything farther is outside the tree anyway.
+    return std::isfinite(c) && std::abs(c) < 65536.0 * tree.getResolution() &&
+           tree.coordToKeyChecked(c, k);
 }
 
 bool ExplorationMap::Impl::keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const {

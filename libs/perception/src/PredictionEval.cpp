@@ -2,12 +2,23 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "daep/common/Error.h"
 
 namespace daep::perception {
+
+namespace {
+
+/** Frames and ids are written as floats ("780.0"); they must be integers that fit an int. */
+bool isIntegral(double value) {
+    return std::abs(value) <= std::numeric_limits<int>::max() && value == std::floor(value);
+}
+
+}  // namespace
 
 PedestrianTracks loadPedestrianTracks(const std::string& path) {
     std::ifstream in(path);
@@ -23,6 +34,9 @@ PedestrianTracks loadPedestrianTracks(const std::string& path) {
         if (!(cells >> frame >> id >> x >> y))
             throw InputError(path + ":" + std::to_string(lineNo) +
                              ": expected 'frame id x y', got '" + line + "'");
+        if (!isIntegral(frame) || !isIntegral(id))
+            throw InputError(path + ":" + std::to_string(lineNo) +
+                             ": frame and id must be integers, got '" + line + "'");
         tracks.byFrame[static_cast<int>(frame)][static_cast<int>(id)] = {x, y};
     }
     if (tracks.byFrame.empty())

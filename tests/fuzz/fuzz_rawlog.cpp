@@ -1,0 +1,86 @@
+// The streaming rawlog reader (the observations and the actions / sensory-frames formats,
+// plain or gzip'ed), read to the end as a rawlog replay does.
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+
+#include "FuzzSupport.h"
+#include "RawlogReader.h"
+
+// MRPT 2.5's deserializer trusts the sizes and counts in the file: a few corrupt bytes make it
+// allocate (and zero) up to 4 GB for one string, or billions of elements for a
+// CActionCollection, before it meets the end of the file (both found by this target). ASan's
+// operator new aborts instead of throwing, and a release build may exhaust memory. Here, while
+// an input is read, allocations beyond a budget far above what a fuzz input's objects need
+// throw std::bad_alloc (the reader turns it into an InputError), so fuzzing goes on to our code.
+constexpr std::size_t kAllocationBudget = std::size_t(64) << 20;
+bool readingInput = false;
+std::size_t allocatedForInput = 0;
+
+// Every unaligned form is replaced, so that each allocation is freed by its own kind.
+void* boundedAllocation(std::size_t size) noexcept {
+    if (readingInput) {
+        if (size > kAllocationBudget - allocatedForInput) {
+            readingInput = false;  // one refusal unwinds MRPT; the error message may allocate
+            return nullptr;
+        }
+        allocatedForInput += size;
+    }
+    return std::malloc(size == 0 ? 1 : size);
+}
+void* throwingAllocation(std::size_t size) {
+    if (void* p = boundedAllocation(size))
+        return p;
+    throw std::bad_alloc();
+}
+
+void* operator new(std::size_t size) {
+    return throwingAllocation(size);
+}
+void* operator new[](std::size_t size) {
+    return throwingAllocation(size);
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+    return boundedAllocation(size);
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+    return boundedAllocation(size);
+}
+void operator delete(void* p) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+    std::free(p);
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string path = daep::fuzz::writeScratch(
+        "fuzz.rawlog", std::string(reinterpret_cast<const char*>(data), size));
+    readingInput = true;
+    allocatedForInput = 0;
+    daep::fuzz::expectOnlyInputErrors([&] {
+        daep::mission::RawlogReader reader(path, "", "DRONE_POSE");
+        daep::mission::RawlogFrame frame;
+        while (reader.next(frame)) {
+            const auto& range = frame.depth->rangeImage;
+            if (range.cols() != static_cast<int>(frame.depth->cameraParams.ncols))
+                continue;
+        }
+    });
+    readingInput = false;
+    return 0;
+}
