@@ -52,6 +52,26 @@ TEST(RawlogSourceApp, ReplaysTheShippedDatasetWithAPlanner) {
     EXPECT_NE(readText(out / "config.ini").find("rawlog_file = " + kDataset), std::string::npos);
 }
 
+// The README's replay command, from another folder: the config names the dataset and its
+// world relative to the share directory, and that world must still load (it is the test room's).
+TEST(RawlogSourceApp, ShippedReplayConfigRunsAsWritten) {
+    const std::string source(DAEP_SOURCE_DIR);
+    EXPECT_EQ(readText(source + "/datasets/tiny_room.yaml"),
+              readText(source + "/tests/e2e/data/tiny_room.yaml"))
+        << "datasets/tiny_room.yaml is the test room's copy: keep the two equal";
+    const auto dir = freshDir("rawlog_replay_config");
+    const auto out = dir / "run";
+    const auto r = runExplore(
+        source + "/config-ini/tiny_room_replay.ini --quiet --set output.scene=false --out " +
+            out.string(),
+        dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string summary = readText(out / "summary.json");
+    EXPECT_NE(summary.find("\"end_reason\": \"end of rawlog\""), std::string::npos) << summary;
+    EXPECT_GT(jsonNumber(summary, "coverage_percent"), 30.0);
+    EXPECT_EQ(lineCount(out / "trajectory.csv"), 103);
+}
+
 TEST(RawlogSourceApp, MissingRawlogIsExitOneNamingTheFile) {
     const auto dir = freshDir("rawlog_missing");
     const std::string missing = (dir / "nowhere.rawlog").string();

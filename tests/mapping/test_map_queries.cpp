@@ -154,7 +154,10 @@ protected:
             }
         }
         for (int i = 0; i < 25; ++i) {
-            test::occupy(map_, cellCentre({cx(rng), cy(rng), cz(rng)}, kRes));
+            // Drawn z, y, x as named variables: argument evaluation order differs between
+            // compilers (g++ right to left, clang left to right), and the map must not.
+            const int z = cz(rng), y = cy(rng), x = cx(rng);
+            test::occupy(map_, cellCentre({x, y, z}, kRes));
         }
     }
     static MapParams params() {
@@ -267,11 +270,13 @@ TEST_F(RandomMap, CastRayStopsAtEntryOfFirstOccupiedCell) {
     std::normal_distribution<double> n(0.0, 1.0);
     int hits = 0;
     for (int i = 0; i < 500; ++i) {
-        const Eigen::Vector3d o(ux(rng), uy(rng), uz(rng));
+        const double oz = uz(rng), oy = uy(rng), ox = ux(rng);  // one order on every compiler
+        const Eigen::Vector3d o(ox, oy, oz);
         if (map_.isOccupied(o)) {
             continue;
         }
-        const Eigen::Vector3d dir = Eigen::Vector3d(n(rng), n(rng), 0.3 * n(rng)).normalized();
+        const double dz = 0.3 * n(rng), dy = n(rng), dx = n(rng);
+        const Eigen::Vector3d dir = Eigen::Vector3d(dx, dy, dz).normalized();
         const double maxRange = 6.0;
         const double t = map_.castRay(o, dir, maxRange);
         ASSERT_GE(t, 0.0);

@@ -34,20 +34,25 @@ std::string fileDigest(const std::string& path) {
 }
 
 /**
- * The files a world is built from: the world file, then every file it references (meshes), named
+ * The files a world is built from: the world file, then every file it references (meshes, voxel
+ * maps), named
  * relative to the world file's folder so that the names do not depend on where the tree lies.
  */
 std::vector<std::pair<std::string, std::string>> worldFiles(const world::WorldSpec& w) {
     const fs::path base = fs::path(w.sourceFile).parent_path();
     std::vector<std::pair<std::string, std::string>> files{
         {fs::path(w.sourceFile).filename().string(), fileDigest(w.sourceFile)}};
-    for (const auto& mesh : w.meshes) {
-        const std::string name = fs::path(mesh.source).lexically_relative(base).string();
+    const auto add = [&](const std::string& source) {
+        const std::string name = fs::path(source).lexically_relative(base).string();
         const bool listed = std::any_of(files.begin(), files.end(),
                                         [&name](const auto& f) { return f.first == name; });
         if (!listed)
-            files.emplace_back(name, fileDigest(mesh.source));
-    }
+            files.emplace_back(name, fileDigest(source));
+    };
+    for (const auto& mesh : w.meshes)
+        add(mesh.source);
+    for (const auto& map : w.voxelMaps)
+        add(map.source);
     return files;
 }
 
