@@ -84,6 +84,18 @@ void drawYAxis(Canvas& c, const Frame& f, const std::vector<double>& ticks) {
     }
 }
 
+/** Saves one drawing once per extension under one stem; returns the paths written. */
+template <class Drawing>
+std::vector<std::string> saveEach(const Drawing& drawing, const std::string& stem,
+                                  const std::vector<std::string>& extensions) {
+    std::vector<std::string> written;
+    for (const auto& ext : extensions) {
+        drawing.save(stem + "." + ext);
+        written.push_back(stem + "." + ext);
+    }
+    return written;
+}
+
 }  // namespace
 
 Plot::Plot(int width, int height) : width_(width), height_(height) {
@@ -316,12 +328,7 @@ void Plot::save(const std::string& path) const {
 
 std::vector<std::string> Plot::saveAs(const std::string& stem,
                                       const std::vector<std::string>& extensions) const {
-    std::vector<std::string> written;
-    for (const auto& ext : extensions) {
-        save(stem + "." + ext);
-        written.push_back(stem + "." + ext);
-    }
-    return written;
+    return saveEach(*this, stem, extensions);
 }
 
 int Figure::width() const {
@@ -356,12 +363,7 @@ void Figure::save(const std::string& path) const {
 
 std::vector<std::string> Figure::saveAs(const std::string& stem,
                                         const std::vector<std::string>& extensions) const {
-    std::vector<std::string> written;
-    for (const auto& ext : extensions) {
-        save(stem + "." + ext);
-        written.push_back(stem + "." + ext);
-    }
-    return written;
+    return saveEach(*this, stem, extensions);
 }
 
 Rgb seriesColor(std::size_t i) {

@@ -119,8 +119,10 @@ struct RawlogReader::Impl {
             const std::string reason = oneLineReason(e);
             if (isEndOfData(reason) || in.checkEOF())
                 fail("truncated rawlog: the file ends inside " + where(objects + 1));
+            // --debug: MRPT's own text with its call stack after the line.
+            const std::string detail = debugErrors() ? std::string("\n") + e.what() : "";
             fail((objects == 0 ? "not an MRPT rawlog: " : "corrupt rawlog: ") + where(objects + 1) +
-                 " is unreadable: " + reason);
+                 " is unreadable: " + reason + detail);
         }
         ++objects;
         return obj;
