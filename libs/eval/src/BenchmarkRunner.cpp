@@ -236,11 +236,11 @@ std::string describeParameterChanges(const std::string& before, const std::strin
 
 std::string describeFileChanges(const RunInputs& before, const RunInputs& now) {
     std::string text;
-    for (const auto& [name, digest] : now.files) {
+    for (const auto& file : now.files) {  // no structured binding: clang 14 cannot capture one
         const auto it = std::find_if(before.files.begin(), before.files.end(),
-                                     [&name](const auto& f) { return f.first == name; });
-        if (it == before.files.end() || it->second != digest)
-            text += (text.empty() ? "" : ", ") + name;
+                                     [&file](const auto& f) { return f.first == file.first; });
+        if (it == before.files.end() || it->second != file.second)
+            text += (text.empty() ? "" : ", ") + file.first;
     }
     return text.empty() ? "" : "world file " + text + " changed";
 }
