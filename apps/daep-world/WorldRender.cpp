@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <vector>
 
 namespace daep::worldapp {
 namespace {
@@ -199,30 +200,51 @@ void drawScaleBar(cv::Mat& img, const Projection& proj, double step) {
     cv::putText(img, metres(step), {x0 + len + 6, y + 5}, kFont, 0.45, kBlack, 1, cv::LINE_AA);
 }
 
-void legendItem(cv::Mat& img, int& x, int y, const cv::Scalar& c, const std::string& text,
-                int kind) {
-    if (kind == 0)
-        cv::rectangle(img, {x, y - 6}, {x + 16, y + 6}, c, cv::FILLED);
-    else if (kind == 1)
-        cv::rectangle(img, {x, y - 6}, {x + 16, y + 6}, c, 2);
-    else if (kind == 2)
-        cv::circle(img, {x + 8, y}, 7, c, 2, cv::LINE_AA);
-    else
-        cv::arrowedLine(img, {x, y}, {x + 18, y}, c, 2, cv::LINE_AA, 0, 0.4);
-    cv::putText(img, text, {x + 24, y + 5}, kFont, 0.42, kBlack, 1, cv::LINE_AA);
-    int base = 0;
-    x += 24 + cv::getTextSize(text, kFont, 0.42, 1, &base).width + 18;
+struct LegendEntry {
+    cv::Scalar colour;
+    std::string text;
+    int kind;  ///< 0 filled square, 1 outlined square, 2 circle, 3 arrow
+};
+
+constexpr int kLegendSymbol = 24, kLegendGap = 18;
+
+int legendWidth(const std::vector<LegendEntry>& entries, double font) {
+    int width = 0, base = 0;
+    for (const auto& e : entries)
+        width += kLegendSymbol + cv::getTextSize(e.text, kFont, font, 1, &base).width + kLegendGap;
+    return width - kLegendGap;
 }
 
+void legendItem(cv::Mat& img, int& x, int y, const LegendEntry& e, double font) {
+    if (e.kind == 0)
+        cv::rectangle(img, {x, y - 6}, {x + 16, y + 6}, e.colour, cv::FILLED);
+    else if (e.kind == 1)
+        cv::rectangle(img, {x, y - 6}, {x + 16, y + 6}, e.colour, 2);
+    else if (e.kind == 2)
+        cv::circle(img, {x + 8, y}, 7, e.colour, 2, cv::LINE_AA);
+    else
+        cv::arrowedLine(img, {x, y}, {x + 18, y}, e.colour, 2, cv::LINE_AA, 0, 0.4);
+    cv::putText(img, e.text, {x + kLegendSymbol, y + 5}, kFont, font, kBlack, 1, cv::LINE_AA);
+    int base = 0;
+    x += kLegendSymbol + cv::getTextSize(e.text, kFont, font, 1, &base).width + kLegendGap;
+}
+
+/** One row under the map; a smaller font where the image is too narrow for it. */
 void drawLegend(cv::Mat& img, const WorldSpec& w) {
-    int x = kMargin;
-    const int y = img.rows - 16;
-    legendItem(img, x, y, heightShade(1.0, 0.0, 1.0), "geometry (darker = taller)", 0);
-    legendItem(img, x, y, kBoxColour, "exploration box", 1);
-    legendItem(img, x, y, kStartColour, "starts", 2);
+    std::vector<LegendEntry> entries{{heightShade(1.0, 0.0, 1.0), "geometry (darker = taller)", 0},
+                                     {kBoxColour, "exploration box", 1},
+                                     {kStartColour, "starts", 2}};
     if (!w.people.empty())
-        legendItem(img, x, y, personColour(0, w.people.size()),
-                   "people routes (dot = first waypoint)", 3);
+        entries.push_back(
+            {personColour(0, w.people.size()), "people routes (dot = first waypoint)", 3});
+    const int available = img.cols - 2 * kMargin;
+    double font = 0.42;
+    for (int width = legendWidth(entries, font); width > available && font > 0.25;
+         width = legendWidth(entries, font))
+        font -= 0.02;
+    int x = kMargin;
+    for (const auto& e : entries)
+        legendItem(img, x, img.rows - 16, e, font);
 }
 
 void drawTitle(cv::Mat& img, const WorldSpec& w) {
