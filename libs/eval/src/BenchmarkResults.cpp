@@ -12,10 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "daep/common/BuildInfo.h"
-#include "daep/common/Error.h"
 #include "BenchmarkFigures.h"
 #include "RunSeries.h"
+#include "daep/common/BuildInfo.h"
+#include "daep/common/Error.h"
 #include "daep/eval/Plot.h"
 #include "daep/eval/RunRecorder.h"
 #include "daep/eval/Statistics.h"
@@ -214,7 +214,7 @@ std::vector<std::string> writeCollisionPlot(const RunResult& run, const std::str
     plot.setTitle("Collisions: " + displayName(run.spec.planner) + ", " + run.spec.world + " (" +
                   run.spec.mode + "), start " + std::to_string(run.spec.start) + ", rep " +
                   std::to_string(run.spec.repetition) + ": " + std::to_string(spans.size()) +
-                  " collisions");
+                  (spans.size() == 1 ? " collision" : " collisions"));
     plot.setXLabel("time [s]");
     plot.setYLabel("coverage [%]");
     plot.setYRange(0.0, 100.0);
