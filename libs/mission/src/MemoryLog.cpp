@@ -91,11 +91,11 @@ void MemoryLog::writePlot(const std::string& path, const std::string& title) con
     plot.setTitle(title);
     plot.setXLabel("exploration time [s]");
     plot.setYLabel("resident set [MB]");
-    plot.setYRange(0.0, 1.1 * std::max(peakRss, 1.0));
+    plot.setYRange(0.0, 1.35 * std::max(peakRss, 1.0));  // headroom: the legend sits on top
     plot.addLine(times_, rssMb_, eval::seriesColor(0), "resident set (MB)");
-    char knownLabel[96];
-    std::snprintf(knownLabel, sizeof knownLabel, "known volume (peak %.0f m^3 = peak RSS)",
-                  peakKnown);
+    char knownLabel[128];
+    std::snprintf(knownLabel, sizeof knownLabel,
+                  "known volume, scaled (%.0f m^3 at the highest resident set sampled)", peakKnown);
     plot.addLine(times_, knownScaled, eval::seriesColor(1), knownLabel);
     plot.save(path);
 }
