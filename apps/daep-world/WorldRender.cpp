@@ -208,10 +208,16 @@ struct LegendEntry {
 
 constexpr int kLegendSymbol = 24, kLegendGap = 18;
 
+/** The room an entry takes in the row: symbol, text and the gap to the next entry. */
+int entryWidth(const LegendEntry& e, double font) {
+    int base = 0;
+    return kLegendSymbol + cv::getTextSize(e.text, kFont, font, 1, &base).width + kLegendGap;
+}
+
 int legendWidth(const std::vector<LegendEntry>& entries, double font) {
-    int width = 0, base = 0;
+    int width = 0;
     for (const auto& e : entries)
-        width += kLegendSymbol + cv::getTextSize(e.text, kFont, font, 1, &base).width + kLegendGap;
+        width += entryWidth(e, font);
     return width - kLegendGap;
 }
 
@@ -225,8 +231,7 @@ void legendItem(cv::Mat& img, int& x, int y, const LegendEntry& e, double font) 
     else
         cv::arrowedLine(img, {x, y}, {x + 18, y}, e.colour, 2, cv::LINE_AA, 0, 0.4);
     cv::putText(img, e.text, {x + kLegendSymbol, y + 5}, kFont, font, kBlack, 1, cv::LINE_AA);
-    int base = 0;
-    x += kLegendSymbol + cv::getTextSize(e.text, kFont, font, 1, &base).width + kLegendGap;
+    x += entryWidth(e, font);
 }
 
 /** One row under the map; a smaller font where the image is too narrow for it. */

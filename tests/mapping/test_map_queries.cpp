@@ -154,10 +154,7 @@ protected:
             }
         }
         for (int i = 0; i < 25; ++i) {
-            // Drawn z, y, x as named variables: argument evaluation order differs between
-            // compilers (g++ right to left, clang left to right), and the map must not.
-            const int z = cz(rng), y = cy(rng), x = cx(rng);
-            test::occupy(map_, cellCentre({x, y, z}, kRes));
+            test::occupy(map_, cellCentre({cx(rng), cy(rng), cz(rng)}, kRes));  // braces: in order
         }
     }
     static MapParams params() {
@@ -270,7 +267,9 @@ TEST_F(RandomMap, CastRayStopsAtEntryOfFirstOccupiedCell) {
     std::normal_distribution<double> n(0.0, 1.0);
     int hits = 0;
     for (int i = 0; i < 500; ++i) {
-        const double oz = uz(rng), oy = uy(rng), ox = ux(rng);  // one order on every compiler
+        // Drawn z, y, x as g++ evaluates constructor arguments (right to left; clang goes left to
+        // right): named, the rays are the same on every compiler.
+        const double oz = uz(rng), oy = uy(rng), ox = ux(rng);
         const Eigen::Vector3d o(ox, oy, oz);
         if (map_.isOccupied(o)) {
             continue;

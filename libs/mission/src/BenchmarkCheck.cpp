@@ -35,8 +35,8 @@ std::string fileDigest(const std::string& path) {
 
 /**
  * The files a world is built from: the world file, then every file it references (meshes, voxel
- * maps), named
- * relative to the world file's folder so that the names do not depend on where the tree lies.
+ * maps), named relative to the world file's folder so that the names do not depend on where the
+ * tree lies.
  */
 std::vector<std::pair<std::string, std::string>> worldFiles(const world::WorldSpec& w) {
     const fs::path base = fs::path(w.sourceFile).parent_path();

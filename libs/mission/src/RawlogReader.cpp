@@ -69,6 +69,12 @@ std::string oneLineReason(const std::exception& e) {
     return out.empty() ? "unknown error" : out;
 }
 
+/** An MRPT exception as the user is told it: one line, and with --debug its whole text after it. */
+std::string reportedReason(const std::exception& e) {
+    const std::string line = oneLineReason(e);
+    return debugErrors() ? line + "\n" + e.what() : line;
+}
+
 bool isEndOfData(const std::string& reason) {
     return reason.find("EOF") != std::string::npos;
 }
@@ -116,13 +122,10 @@ struct RawlogReader::Impl {
         } catch (const std::bad_alloc&) {
             fail("corrupt rawlog: " + where(objects + 1) + " declares more data than memory holds");
         } catch (const std::exception& e) {
-            const std::string reason = oneLineReason(e);
-            if (isEndOfData(reason) || in.checkEOF())
+            if (isEndOfData(oneLineReason(e)) || in.checkEOF())
                 fail("truncated rawlog: the file ends inside " + where(objects + 1));
-            // --debug: MRPT's own text with its call stack after the line.
-            const std::string detail = debugErrors() ? std::string("\n") + e.what() : "";
             fail((objects == 0 ? "not an MRPT rawlog: " : "corrupt rawlog: ") + where(objects + 1) +
-                 " is unreadable: " + reason + detail);
+                 " is unreadable: " + reportedReason(e));
         }
         ++objects;
         return obj;
@@ -152,7 +155,7 @@ struct RawlogReader::Impl {
         try {
             scan->load();  // externally stored images (<rawlog>_Images/)
         } catch (const std::exception& e) {
-            fail("cannot load the external data of a depth frame: " + oneLineReason(e));
+            fail("cannot load the external data of a depth frame: " + reportedReason(e));
         }
         if (!scan->hasRangeImage)
             return nullptr;
