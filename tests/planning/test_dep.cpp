@@ -278,6 +278,44 @@ TEST_F(DepHalfKnownRoom, DeterministicForASeed) {
     EXPECT_EQ(a.roadmap().size(), b.roadmap().size());
 }
 
+/** Calls to plan() until it says finished, at most `calls`; the number made. */
+int callsUntilFinished(DepPlanner& planner, const PlanningContext& c, int calls) {
+    for (int k = 1; k <= calls; ++k)
+        if (planner.plan(c).status == Plan::Status::Finished)
+            return k;
+    return calls + 1;
+}
+
+TEST(DepFinish, AKnownRoomFinishesAfterFinishPlansIdleCallsAndNeverWithZero) {
+    auto map = test::makeMap(box(0, 0, 0, 4, 4, 2));
+    const Eigen::Vector3d root(2.1, 2.1, 1.1);
+    map->insertPointCloud(root, test::roomScan(box(-0.1, -0.1, -0.1, 4.1, 4.1, 2.1), root, 0.5));
+    ASSERT_GT(map->coverage(), 0.99);
+    const PlanningContext c = contextFor(*map, root);
+    DepPlanner finishing(depParams(), gainParams(), 4);
+    const int calls = callsUntilFinished(finishing, c, 40);
+    EXPECT_GE(calls, finishing.params().finishPlans);
+    EXPECT_LE(calls, 40);
+    DepParams endless = depParams();
+    endless.finishPlans = 0;
+    DepPlanner looking(endless, gainParams(), 4);
+    EXPECT_GT(callsUntilFinished(looking, c, 40), 40);
+    const Plan turn = looking.plan(c);
+    ASSERT_EQ(turn.status, Plan::Status::Path);
+    ASSERT_EQ(turn.waypoints.size(), 1u);
+    EXPECT_EQ(turn.waypoints[0].pose.position, root);  // turning in place, looking around
+}
+
+TEST(DepFinish, FinishPlansZeroIsReadAndNegativeIsAnError) {
+    const std::string zero = "0", negative = "-1";
+    const auto cfg =
+        test::configFromText(test::editKey(test::defaultsText(), "dep", "finish_plans", &zero));
+    EXPECT_EQ(DepParams::fromConfig(*cfg).finishPlans, 0);
+    const auto bad =
+        test::configFromText(test::editKey(test::defaultsText(), "dep", "finish_plans", &negative));
+    EXPECT_THROW(DepParams::fromConfig(*bad), InputError);
+}
+
 /** A plan along +x in a known free corridor; then a person appears across it. */
 TEST(DepReplan, KeepFlyingStopsOnlyWhenThePathAheadIsBlockedAndReplanIsOn) {
     const auto map = test::makeMap(box(0, 0, 0, 10, 4, 2), 6.0);

@@ -47,7 +47,7 @@ DepParams DepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.weights.surface = requireNonNegative(r, "surface_weight");
     p.candidateFraction = requireInRange(r, "candidate_fraction", 0.0, 1.0);
     p.minGain = requireNonNegative(r, "min_gain");
-    p.finishPlans = requireIntAtLeast(r, "finish_plans", 1);
+    p.finishPlans = requireIntAtLeast(r, "finish_plans", 0);
     p.finishMinNodes = requireIntAtLeast(r, "finish_min_nodes", 0);
     p.refreshStep = requirePositive(r, "refresh_step");
     p.spentRatio = requireInRange(r, "spent_ratio", 0.0, 1.0);
@@ -431,7 +431,7 @@ Plan DepPlanner::plan(const PlanningContext& context) {
     why << roadmap_.size() << " nodes (+" << lastNewNodes_ << "), " << lastRefreshed_
         << " gains refreshed";
     Plan result;
-    if (idlePlans_ >= params_.finishPlans) {
+    if (params_.finishPlans > 0 && idlePlans_ >= params_.finishPlans) {
         why << "; " << idlePlans_ << " plans in a row added almost nothing and reached no gain";
         result.status = Plan::Status::Finished;
     } else if (choice.goal >= 0) {
