@@ -29,6 +29,8 @@ const std::string kDataset = std::string(DAEP_SOURCE_DIR) + "/datasets/tiny_room
  */
 constexpr std::size_t kSecondFrame = 59259;
 constexpr std::size_t kPoseAfterSecondFrame = 117526;
+/** Where in a frame the range image's rows and cols (uint32 each) are. */
+constexpr std::size_t kRangeImageSize = 165;
 
 using Bytes = std::vector<char>;
 
@@ -161,6 +163,32 @@ TEST_F(RawlogCorruption, FlippedBytesInTheCompressedStream) {
         const fs::path p = write("flip.rawlog", b);
         expectCleanOutcome(replay(p, dir_), p, false);
     }
+}
+
+TEST_F(RawlogCorruption, ImageSizesBeyondMemoryAreExitOneBeforeAnythingIsAllocated) {
+    // A flipped byte of the range image's row or column count asks for 4 or 5.3 GB, which MRPT
+    // allocated and filled for minutes; a flipped top byte makes the count negative as an int,
+    // which MRPT refuses itself.
+    for (const std::size_t byte : {2, 3, 6, 7}) {
+        const std::size_t pos = kSecondFrame + kRangeImageSize + byte;
+        SCOPED_TRACE("flip at " + std::to_string(pos));
+        Bytes b = plain_;
+        b[pos] = static_cast<char>(b[pos] ^ 0xff);
+        const fs::path p = write("size.rawlog", b);
+        const Outcome o = replay(p, dir_);
+        expectCleanOutcome(o, p, true);
+        EXPECT_NE(o.err.find("corrupt rawlog: object 4 (after 0 depth frames)"), std::string::npos)
+            << o.err;
+        if (byte == 2 || byte == 6)
+            EXPECT_NE(o.err.find("declares more data than memory holds"), std::string::npos)
+                << o.err;
+    }
+    // Found by fuzz_rawlog: a range image of 3.7e18 bytes in a file of its own.
+    const fs::path found = fs::path(DAEP_SOURCE_DIR) / "tests/fuzz/regressions/rawlog" /
+                           "range_image_size_beyond_memory.rawlog";
+    const Outcome o = replay(found, dir_);
+    expectCleanOutcome(o, found, true);
+    EXPECT_NE(o.err.find("declares more data than memory holds"), std::string::npos) << o.err;
 }
 
 TEST_F(RawlogCorruption, AFileThatIsNoRawlogLeavesNoEmptyOutputs) {

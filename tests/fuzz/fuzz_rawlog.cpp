@@ -70,6 +70,8 @@ void operator delete[](void* p, const std::nothrow_t&) noexcept {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string path = daep::fuzz::writeScratch(
         "fuzz.rawlog", std::string(reinterpret_cast<const char*>(data), size));
+    // MRPT's aligned blocks (images, point vectors) the reader refuses past the same budget.
+    daep::mission::RawlogReader::setLargestReadBlock(kAllocationBudget);
     readingInput = true;
     allocatedForInput = 0;
     daep::fuzz::expectOnlyInputErrors([&] {

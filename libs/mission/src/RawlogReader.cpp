@@ -9,13 +9,61 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <new>
 
 #include "daep/common/Error.h"
+
+namespace daep::mission {
+namespace {
+
+constexpr int kMaxImageSide = 16384;
+constexpr std::size_t kLargestImageBytes =
+    std::size_t(kMaxImageSide) * kMaxImageSide * sizeof(float);
+
+std::atomic<std::size_t> largestReadBlock{kLargestImageBytes};
+/** Set while this thread deserializes one rawlog object. */
+thread_local bool readingObject = false;
+
+/** Marks the deserialization of one object, for mrpt::aligned_malloc below. */
+class ReadingObject {
+public:
+    ReadingObject() { readingObject = true; }
+    ~ReadingObject() { readingObject = false; }
+    ReadingObject(const ReadingObject&) = delete;
+    ReadingObject& operator=(const ReadingObject&) = delete;
+};
+
+}  // namespace
+}  // namespace daep::mission
+
+// MRPT 2.5's aligned_allocator_cpp11 hands on what mrpt::aligned_malloc returns unchecked, and
+// std::vector writes through the null that a corrupt rawlog's image size (3.7e18 bytes) gets:
+// a segmentation fault instead of an error naming the file; a size of a few gigabytes is
+// allocated and filled for minutes. This definition is found before libmrpt-core's (the
+// executable's symbols come first; the MRPT libraries call it through their PLT) and does what
+// it does, rounding the size up to the alignment for aligned_alloc, except that no memory, or
+// a block beyond RawlogReader::setLargestReadBlock while a rawlog object is read, is
+// std::bad_alloc, which the reader reports as a corrupt object.
+namespace mrpt {
+void* aligned_malloc(std::size_t size, std::size_t alignment) {
+    if (alignment == 0 || size > std::numeric_limits<std::size_t>::max() - alignment)
+        throw std::bad_alloc();
+    if (daep::mission::readingObject && size > daep::mission::largestReadBlock.load())
+        throw std::bad_alloc();
+    const std::size_t rounded = (size + alignment - 1) / alignment * alignment;
+    void* p = std::aligned_alloc(alignment, rounded);
+    if (p == nullptr && rounded != 0)
+        throw std::bad_alloc();
+    return p;
+}
+}  // namespace mrpt
 
 namespace daep::mission {
 namespace {
@@ -44,7 +92,6 @@ int personIndex(const std::string& label) {
 constexpr double kMaxFrameGap = 3600.0;
 /** Farthest a rawlog pose may lie from the origin, m (the map's octree reaches +-6.5 km). */
 constexpr double kMaxCoordinate = 5000.0;
-constexpr int kMaxImageSide = 16384;
 
 /**
  * One printable line from an MRPT exception: the innermost "Message:" of its nested report
@@ -114,6 +161,7 @@ struct RawlogReader::Impl {
         const auto before = in.getPosition();
         mrpt::serialization::CSerializable::Ptr obj;
         try {
+            const ReadingObject reading;
             mrpt::serialization::archiveFrom(in) >> obj;
         } catch (const mrpt::serialization::CExceptionEOF&) {
             if (in.getPosition() != before)
@@ -243,6 +291,10 @@ const std::string& RawlogReader::path() const {
 
 std::size_t RawlogReader::objectsRead() const {
     return impl_->objects;
+}
+
+void RawlogReader::setLargestReadBlock(std::size_t bytes) {
+    largestReadBlock.store(bytes);
 }
 
 /**

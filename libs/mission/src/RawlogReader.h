@@ -50,6 +50,14 @@ public:
     /** Serialized objects read so far. */
     std::size_t objectsRead() const;
 
+    /**
+     * The largest block MRPT's deserializer may allocate at once while one object is read: a
+     * corrupt size field asks for gigabytes or terabytes, and more than this is a "corrupt
+     * rawlog" error before anything is allocated. Default: the largest range image accepted,
+     * 16384 x 16384 floats (1 GiB).
+     */
+    static void setLargestReadBlock(std::size_t bytes);
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
