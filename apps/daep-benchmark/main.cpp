@@ -23,13 +23,15 @@ namespace {
 
 const char* kUsage =
     "usage: daep-benchmark CONFIG.ini [--jobs N] [--out DIR] [--set section.key=value ...]\n"
-    "                      [--retry-failed] [--explore PATH] [--emit-jobs FILE]\n"
+    "                      [--retry-failed] [--load N] [--explore PATH] [--emit-jobs FILE]\n"
     "       daep-benchmark --aggregate DIR\n"
     "Runs every planner x world x mode x start x repetition of CONFIG.ini as a daep-explore\n"
     "process (N at a time, default: number of CPUs) into DIR/runs/<run>/, skipping runs done\n"
     "before, then writes DIR/results.csv, DIR/table.md and DIR/plots/*.png.\n"
     "  --set benchmark.key=v   override a [benchmark] key; other section.key=v go to every run\n"
     "  --retry-failed          run failed runs again (by default they are kept as failed)\n"
+    "  --load N                keep N more threads busy while the runs go (a loaded machine,\n"
+    "                          for planning_time = measured); recorded in each run.json\n"
     "  --explore PATH          the daep-explore binary (default: next to this one)\n"
     "  --emit-jobs FILE        write one shell command per pending run and exit (for GNU\n"
     "                          parallel or a Slurm array); aggregate later with --aggregate\n"
@@ -40,19 +42,23 @@ struct Options {
     std::string config, out, explore, emitJobs, aggregate;
     std::vector<std::string> sets;
     int jobs = 0;
+    int load = 0;
     bool retryFailed = false;
 };
 
-int parseJobs(const std::string& text) {
+/** An option's integer in [lo, hi], or an error naming the option. */
+int parseCount(const std::string& option, const std::string& text, int lo, int hi) {
     std::size_t used = 0;
-    int jobs = 0;
+    int n = 0;
     try {
-        jobs = std::stoi(text, &used);
+        n = std::stoi(text, &used);
     } catch (const std::exception&) {
+        used = 0;
     }
-    if (used != text.size() || jobs < 1)
-        throw daep::InputError("--jobs: '" + text + "' is not a positive integer");
-    return jobs;
+    if (text.empty() || used != text.size() || n < lo || n > hi)
+        throw daep::InputError(option + ": '" + text + "' is not an integer from " +
+                               std::to_string(lo) + " to " + std::to_string(hi));
+    return n;
 }
 
 /** The options, or nullopt when there is nothing to run (--help, --version). */
@@ -60,7 +66,10 @@ std::optional<Options> parseArguments(int argc, char** argv) {
     Options o;
     std::vector<std::string> config;
     daep::CommandLine cli("daep-benchmark", kUsage);
-    cli.option("-j,--jobs", [&o](const std::string& text) { o.jobs = parseJobs(text); })
+    cli.option("-j,--jobs",
+               [&o](const std::string& text) { o.jobs = parseCount("--jobs", text, 1, 4096); })
+        .option("--load",
+                [&o](const std::string& text) { o.load = parseCount("--load", text, 0, 1024); })
         .option("--out", o.out)
         .repeated("--set", o.sets)
         .option("--explore", o.explore)
@@ -113,6 +122,7 @@ int benchmark(const Options& o) {
     const unsigned cpus = std::thread::hardware_concurrency();
     ro.jobs = o.jobs > 0 ? o.jobs : static_cast<int>(cpus ? cpus : 1);
     ro.retryFailed = o.retryFailed;
+    ro.loadThreads = o.load;
     ro.interactive = ::isatty(STDOUT_FILENO) != 0;
     fs::create_directories(ro.outDirectory);
     daep::eval::BenchmarkRunner runner(config, ro, std::move(runs));
@@ -126,7 +136,11 @@ int benchmark(const Options& o) {
     std::cout << config.expand().size() << " runs (" << config.planners.size() << " planners x "
               << config.worlds.size() << " worlds x " << config.modes.size() << " modes x "
               << config.starts.size() << " starts x " << config.repetitions << " repetitions), "
-              << ro.jobs << " at a time, into " << ro.outDirectory << std::endl;
+              << ro.jobs << " at a time"
+              << (ro.loadThreads > 0 ? " beside " + std::to_string(ro.loadThreads) +
+                                           " busy thread" + (ro.loadThreads == 1 ? "" : "s")
+                                     : "")
+              << ", into " << ro.outDirectory << std::endl;
     const auto report = runner.run(std::cout);
     aggregate(ro.outDirectory, config.planners);
     if (report.interrupted) {

@@ -162,3 +162,24 @@ TEST(BenchmarkApp, BadConfigIsExitOneNamingFileAndLine) {
     EXPECT_NE(r.err.find("bad.ini:3: unknown key [benchmark] foo"), std::string::npos) << r.err;
     fs::remove_all(scratch);
 }
+
+TEST(BenchmarkApp, LoadKeepsThreadsBusyBesideTheRunsAndIsRecorded) {
+    const auto scratch = freshDir("benchmark_load");
+    const auto out = scratch / "out";
+    auto r = runApp(DAEP_BENCHMARK_BIN,
+                    smokeConfig() + " --set benchmark.planners=daep --set experiment.max_time_s=5" +
+                        " --jobs 1 --load 1 --out " + out.string(),
+                    scratch);
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("1 at a time beside 1 busy thread, into"), std::string::npos) << r.out;
+    const std::string spec = readText(out / "runs" / "crosswalks_dynamic_daep_s0_r0" / "run.json");
+    EXPECT_NE(spec.find("\"cpu_load_threads\": 1"), std::string::npos) << spec;
+    EXPECT_NE(readText(out / "table.md").find("1 run with 1 busy thread."), std::string::npos)
+        << readText(out / "table.md");
+
+    r = runApp(DAEP_BENCHMARK_BIN, smokeConfig() + " --load -1 --out " + out.string(), scratch);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("--load: '-1' is not an integer from 0 to 1024"), std::string::npos)
+        << r.err;
+    fs::remove_all(scratch);
+}

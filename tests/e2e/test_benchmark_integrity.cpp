@@ -144,7 +144,8 @@ TEST(BenchmarkIntegrity, EveryOutputSaysWhichBuildMadeIt) {
 
     const std::string csv = readText(out / "results.csv");
     const std::string header = csv.substr(0, csv.find('\n'));
-    EXPECT_NE(header.find(",version,git_commit,git_dirty,build_type,host,date_utc,params_digest"),
+    EXPECT_NE(header.find(",version,git_commit,git_dirty,build_type,host,date_utc,cpu_load_threads,"
+                          "params_digest"),
               std::string::npos)
         << header;
 

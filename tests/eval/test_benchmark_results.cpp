@@ -102,10 +102,11 @@ TEST(BenchmarkResults, ProvenanceGoesToItsColumnsAndTheTableHeader) {
     addProvenance(b, "1111111aaaa");
     EXPECT_EQ(aggregateBenchmark(root.string()), 2u);
     const std::string csv = readText(root / "results.csv");
-    EXPECT_NE(csv.find(",version,git_commit,git_dirty,build_type,host,date_utc,params_digest\n"),
+    EXPECT_NE(csv.find(",version,git_commit,git_dirty,build_type,host,date_utc,cpu_load_threads,"
+                       "params_digest\n"),
               std::string::npos)
         << csv;
-    EXPECT_NE(csv.find(",1.2.3,1111111aaaa,true,Release,node1,2026-01-02T03:04:05Z,\n"),
+    EXPECT_NE(csv.find(",1.2.3,1111111aaaa,true,Release,node1,2026-01-02T03:04:05Z,0,\n"),
               std::string::npos)
         << csv;
     std::string table = readText(root / "table.md");
@@ -116,6 +117,7 @@ TEST(BenchmarkResults, ProvenanceGoesToItsColumnsAndTheTableHeader) {
               std::string::npos)
         << table;
     EXPECT_EQ(table.find("Mixed builds"), std::string::npos);
+    EXPECT_EQ(table.find("Under load"), std::string::npos);
     // The metrics do not take the provenance for theirs.
     EXPECT_EQ(readRuns(root.string())[0].metrics.size(), 7u);
 
@@ -127,6 +129,26 @@ TEST(BenchmarkResults, ProvenanceGoesToItsColumnsAndTheTableHeader) {
               std::string::npos)
         << table;
     EXPECT_NE(table.find("- daep 1.2.3 2222222-dirty"), std::string::npos) << table;
+    fs::remove_all(root);
+}
+
+TEST(BenchmarkResults, RunsUnderLoadAreCountedInTheTableAndColumn) {
+    const auto root = tempDir("load");
+    const RunSpec a{"wa", "dynamic", "aep", 0, 0, 1, {}}, b{"wa", "dynamic", "aep", 1, 0, 1, {}};
+    writeRun(root, a, 0, 80, 100, 0);
+    writeRun(root, b, 0, 70, 100, 0);
+    writeRunSpec((root / "runs" / b.id()).string(), b, 2);
+    EXPECT_EQ(readRun((root / "runs" / b.id()).string()).loadThreads, 2);
+    aggregateBenchmark(root.string());
+    const std::string table = readText(root / "table.md");
+    EXPECT_NE(table.find("**Under load** (`daep-benchmark --load N`: N threads kept busy beside "
+                         "the runs): 1 run with 0 busy threads, 1 run with 2 busy threads."),
+              std::string::npos)
+        << table;
+    const std::string csv = readText(root / "results.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
+    EXPECT_NE(csv.find(",0,\n"), std::string::npos) << csv;  // no digest in these runs
+    EXPECT_NE(csv.find(",2,\n"), std::string::npos) << csv;
     fs::remove_all(root);
 }
 
@@ -244,7 +266,7 @@ std::vector<std::pair<double, double>> rectsFilled(const std::string& svg,
 
 TEST(BenchmarkResults, Fig4PutsCollisionEpisodesOnTheExplorationClock) {
     const auto root = tempDir("fig4");
-    const RunSpec spec{"wa", "dynamic", "aep", 0, 0, 1};
+    const RunSpec spec{"wa", "dynamic", "aep", 0, 0, 1, {}};
     writeRun(root, spec, 0, 80, 10, 2);
     const auto dir = root / "runs" / spec.id();
     std::ofstream(dir / "summary.json") << "{\"coverage_percent\": 80, \"exploration_time_s\": 10, "

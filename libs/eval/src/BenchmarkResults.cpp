@@ -284,7 +284,7 @@ std::vector<std::pair<std::string, std::string>> parseFlatJson(const std::string
     return collector.take();
 }
 
-void writeRunSpec(const std::string& runDirectory, const RunSpec& spec) {
+void writeRunSpec(const std::string& runDirectory, const RunSpec& spec, int loadThreads) {
     fs::create_directories(runDirectory);
     const BuildInfo& build = buildInfo();
     const nlohmann::ordered_json json = {{"world", spec.world},
@@ -298,7 +298,8 @@ void writeRunSpec(const std::string& runDirectory, const RunSpec& spec) {
                                          {"launched_by",
                                           {{"version", build.version},
                                            {"git_commit", build.gitCommit},
-                                           {"git_dirty", build.gitDirty}}}};
+                                           {"git_dirty", build.gitDirty},
+                                           {"cpu_load_threads", loadThreads}}}};
     std::ofstream out(fs::path(runDirectory) / kRunSpecFile);
     out << json.dump(2) << "\n";
     if (!out)
@@ -333,6 +334,8 @@ RunResult readRun(const std::string& runDirectory) {
             r.spec.inputs.digest = v;
         else if (k.rfind("input_files.", 0) == 0)
             r.spec.inputs.files.emplace_back(k.substr(12), v);
+        else if (k == "launched_by.cpu_load_threads")
+            r.loadThreads = std::atoi(v.c_str());
 
     const auto exitFile = dir / kExitCodeFile;
     const bool hasExit = fs::exists(exitFile);
@@ -386,7 +389,7 @@ void writeResultsCsv(const std::vector<RunResult>& runs, const std::string& path
         out << ',' << k;
     for (const auto& column : kProvenanceColumns)
         out << ',' << column.name;
-    out << ",params_digest\n";
+    out << ",cpu_load_threads,params_digest\n";
     for (const auto& r : runs) {
         out << csvField(r.spec.world) << ',' << r.spec.mode << ',' << csvField(r.spec.planner)
             << ',' << r.spec.start << ',' << r.spec.repetition << ',' << r.spec.seed << ','
@@ -399,7 +402,7 @@ void writeResultsCsv(const std::vector<RunResult>& runs, const std::string& path
         }
         for (const auto& column : kProvenanceColumns)
             out << ',' << csvField(r.provenanceValue(column.key));
-        out << ',' << r.spec.inputs.digest << '\n';
+        out << ',' << r.loadThreads << ',' << r.spec.inputs.digest << '\n';
     }
     if (!out)
         throw std::runtime_error("cannot write " + path);
@@ -569,6 +572,26 @@ std::vector<std::string> writePlots(const std::vector<RunResult>& runs,
     return written;
 }
 
+namespace {
+
+/** What ran beside the runs, when daep-benchmark --load kept cores busy for any of them. */
+std::string loadMarkdown(const std::map<int, int>& okRunsByLoad) {
+    if (okRunsByLoad.empty() || (okRunsByLoad.size() == 1 && okRunsByLoad.begin()->first == 0))
+        return "";
+    std::ostringstream out;
+    out << "\n**Under load** (`daep-benchmark --load N`: N threads kept busy beside the runs): ";
+    bool first = true;
+    for (const auto& [threads, n] : okRunsByLoad) {
+        out << (first ? "" : ", ") << n << " run" << (n == 1 ? "" : "s") << " with " << threads
+            << " busy thread" << (threads == 1 ? "" : "s");
+        first = false;
+    }
+    out << ".\n";
+    return out.str();
+}
+
+}  // namespace
+
 std::string provenanceMarkdown(const std::vector<RunResult>& runs) {
     // Build description -> runs made by it, in first-seen order; the same for hosts.
     std::vector<std::pair<std::string, int>> builds, hosts;
@@ -582,7 +605,10 @@ std::string provenanceMarkdown(const std::vector<RunResult>& runs) {
     };
     std::string first, last;
     std::size_t unknown = 0;
+    std::map<int, int> loads;  // busy threads beside the run -> ok runs
     for (const auto& r : runs) {
+        if (r.status == "ok")
+            ++loads[r.loadThreads];
         if (r.provenance.empty()) {
             unknown += r.status == "ok";
             continue;
@@ -610,6 +636,7 @@ std::string provenanceMarkdown(const std::vector<RunResult>& runs) {
             out << (i ? ", " : "") << hosts[i].first << " (" << hosts[i].second << ")";
         out << ", " << first << " to " << last << ". Aggregated by " << shortCommit() << ".\n";
     }
+    out << loadMarkdown(loads);
     return out.str();
 }
 

@@ -19,6 +19,7 @@
 
 #include "daep/common/BuildInfo.h"
 #include "daep/eval/BenchmarkResults.h"
+#include "daep/eval/CpuLoad.h"
 
 extern char** environ;
 
@@ -364,6 +365,7 @@ RunnerReport BenchmarkRunner::run(std::ostream& progressOut) {
     Progress progress(progressOut, options_.interactive, all.size(), report.skipped, failedBefore,
                       options_.jobs);
     InterruptGuard guard;
+    const CpuLoad load(options_.loadThreads);
     std::size_t next = 0;
     int handledInterrupts = 0;
     auto lastDraw = Clock::now();
@@ -373,7 +375,7 @@ RunnerReport BenchmarkRunner::run(std::ostream& progressOut) {
                next < pending.size()) {
             const RunSpec& spec = pending[next++];
             const fs::path dir = runDirectory(spec);
-            writeRunSpec(dir.string(), spec);
+            writeRunSpec(dir.string(), spec, options_.loadThreads);
             fs::remove(dir / kExitCodeFile);
             fs::remove(dir / "summary.json");
             try {

@@ -19,6 +19,8 @@ struct RunResult {
     std::vector<std::pair<std::string, std::string>> metrics;
     /** summary.json's "provenance" block, flattened ("git_commit", "libraries.MRPT", ...). */
     std::vector<std::pair<std::string, std::string>> provenance;
+    /** Busy threads the runner kept beside the run (daep-benchmark --load), from run.json. */
+    int loadThreads = 0;
 
     double metric(const std::string& key, double fallback = 0.0) const;
     /** A provenance value as text; "" when absent. */
@@ -40,7 +42,9 @@ inline constexpr const char* kRunLogFile = "run.log";
 std::vector<std::pair<std::string, std::string>> parseFlatJson(const std::string& text);
 
 /** run.json: the run's identification, its parameter digest and the build that launched it. */
-void writeRunSpec(const std::string& runDirectory, const RunSpec& spec);
+/** run.json: the run's labels, digests, the build that launched it and the busy threads beside it.
+ */
+void writeRunSpec(const std::string& runDirectory, const RunSpec& spec, int loadThreads = 0);
 /** Reads a run directory (run.json, exit_code, summary.json); throws if run.json is unreadable. */
 RunResult readRun(const std::string& runDirectory);
 /** Every run directory under DIR/runs that has a run.json, sorted by id. */

@@ -14,6 +14,8 @@ struct RunnerOptions {
     std::string exploreBinary;  ///< daep-explore
     int jobs = 1;
     bool retryFailed = false;
+    /** Threads kept busy beside the runs (CpuLoad), recorded in each run's run.json. */
+    int loadThreads = 0;
     /** Progress bar updated in place (a TTY) or one line per finished run. */
     bool interactive = false;
 };
