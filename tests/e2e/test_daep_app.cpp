@@ -25,14 +25,20 @@ void PrintTo(const DaepRun& r, std::ostream* os) {
 
 class DaepTinyRoom : public ::testing::TestWithParam<DaepRun> {};
 
-std::string summaryOf(const DaepRun& run, const fs::path& dir) {
-    const auto r = runExplore(kTinyIni + " --quiet --set experiment.planner=daep" +
-                                  " --set experiment.start=" + std::to_string(run.start) +
-                                  " --set tracking.people_source=" + run.source +
-                                  " --set output.scene=false --out " + dir.string(),
-                              dir.parent_path());
+/** summary.json of daep-explore on the tiny room's experiment with `sets` (--set ...). */
+std::string summaryWith(const std::string& sets, const fs::path& dir) {
+    const auto r = runExplore(
+        kTinyIni + " --quiet --set output.scene=false " + sets + " --out " + dir.string(),
+        dir.parent_path());
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return readText(dir / "summary.json");
+}
+
+std::string summaryOf(const DaepRun& run, const fs::path& dir) {
+    return summaryWith(
+        "--set experiment.planner=daep --set experiment.start=" + std::to_string(run.start) +
+            " --set tracking.people_source=" + run.source,
+        dir);
 }
 
 }  // namespace
@@ -67,4 +73,28 @@ TEST(DaepTinyRoom, SensedRunsAreReproducibleFromTheSeed) {
     const std::string b = daep::test::deterministicSummaryText(summaryOf(run, dir / "b"));
     EXPECT_EQ(a, b);
     EXPECT_EQ(readText(dir / "a" / "trajectory.csv"), readText(dir / "b" / "trajectory.csv"));
+}
+
+namespace {
+
+/** summary.json of a run in the crossing hall, where a walker passes through start 0. */
+std::string crossingRun(const std::string& planner, const fs::path& dir) {
+    return summaryWith("--set experiment.world=crossing.yaml --set experiment.planner=" + planner +
+                           " --set experiment.planning_fixed_s=10 --set experiment.max_time_s=40",
+                       dir);
+}
+
+}  // namespace
+
+TEST(DaepLongPlans, AHoverThatBecomesUnsafeWhilePlanningIsEvadedBeforeThePlanEnds) {
+    // Every plan takes 10 s of hovering; the walker reaches the drone during the first one.
+    const auto dir = freshDir("daep_crossing");
+    const std::string daep = crossingRun("daep", dir / "daep");
+    EXPECT_EQ(jsonNumber(daep, "collisions"), 0.0) << daep;
+    EXPECT_EQ(jsonNumber(daep, "static_collisions"), 0.0) << daep;
+    EXPECT_GE(jsonNumber(daep, "hover_evasions"), 1.0) << daep;
+    // AEP does not watch people: hovering through its plans, it is walked into.
+    const std::string aep = crossingRun("aep", dir / "aep");
+    EXPECT_GE(jsonNumber(aep, "collisions"), 1.0) << aep;
+    EXPECT_EQ(jsonNumber(aep, "hover_evasions"), 0.0) << aep;
 }

@@ -210,6 +210,42 @@ TEST_F(DaepRoom, KeepFlyingStopsWhenAPersonIsPredictedOnTheRestOfThePath) {
     EXPECT_FALSE(planner.keepFlying(ctx, plan, 0));
 }
 
+TEST_F(DaepRoom, EvasionWhileHoveringOnlyWhenHoveringHereIsNoLongerSafe) {
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, root);
+    const std::vector<PersonForecast> far{walker(0, {0.5, 3.5}, {0, 0}, ctx.time)};
+    ctx.people = &far;
+    EXPECT_FALSE(planner.evasion(ctx).has_value());
+    // The same person 1.6 m away, coming straight at the drone: escape now.
+    const std::vector<PersonForecast> coming{walker(0, {3.6, 2.0}, {-0.35, 0}, ctx.time)};
+    ctx.people = &coming;
+    const std::optional<Plan> escape = planner.evasion(ctx);
+    ASSERT_TRUE(escape.has_value());
+    EXPECT_TRUE(escape->escape) << escape->reason;
+    ASSERT_EQ(escape->waypoints.size(), 1u);
+    EXPECT_NE(escape->reason.find("evasion"), std::string::npos) << escape->reason;
+}
+
+TEST_F(DaepRoom, APlanSafeWhenPlanningBeganButNotWhenItEndsDoesNotStart) {
+    DaepPlanner planner = makePlanner(2);
+    PlanningContext ctx = contextFor(*map, root);
+    const std::vector<PersonForecast> nobody;
+    ctx.people = &nobody;
+    const Plan plan = planner.plan(ctx);
+    ASSERT_FALSE(plan.waypoints.empty()) << plan.reason;
+    // Planning took 2 s; meanwhile a frame showed someone standing on the path's first leg.
+    PlanningContext later = ctx;
+    later.time = ctx.time + 2.0;
+    EXPECT_TRUE(planner.startsSafely(later, plan));
+    const Eigen::Vector3d on = 0.5 * (root + plan.waypoints.front().pose.position);
+    const std::vector<PersonForecast> inTheWay{walker(0, on.head<2>(), {0, 0}, later.time)};
+    later.people = &inTheWay;
+    EXPECT_FALSE(planner.startsSafely(later, plan));
+    Plan escape = plan;
+    escape.escape = true;  // an escape is the best move there is: it is flown
+    EXPECT_TRUE(planner.startsSafely(later, escape));
+}
+
 /** Four people standing across the 4 m wide corridor at x = 6, measured at t. */
 std::vector<PersonForecast> peopleAcrossTheCorridor(double t) {
     std::vector<PersonForecast> wall;

@@ -35,10 +35,12 @@ using detail::spansOf;
 
 const std::set<std::string> kLabelKeys = {"world", "mode", "planner", "start", "seed"};
 const std::vector<std::string> kMetricOrder = {
-    "coverage_percent",  "reachable_percent", "exploration_time_s", "path_length_m",
-    "planning_time_s",   "plan_ms_median",    "plan_ms_p95",        "collisions",
-    "static_collisions", "iterations",        "aborted_paths",      "finished",
-    "end_reason",        "known_volume_m3",   "box_volume_m3",      "exploration_start_s",
+    "coverage_percent", "reachable_percent", "exploration_time_s",
+    "path_length_m",    "planning_time_s",   "plan_ms_median",
+    "plan_ms_p95",      "collisions",        "static_collisions",
+    "iterations",       "aborted_paths",     "hover_evasions",
+    "stale_plans",      "finished",          "end_reason",
+    "known_volume_m3",  "box_volume_m3",     "exploration_start_s",
     "wall_time_s"};
 
 /** results.csv's provenance columns: the fields that can differ between the runs of a benchmark. */

@@ -177,6 +177,8 @@ void RunRecorder::writeSummary(const RunSummary& s) const {
     std::fprintf(f, "  \"static_collisions\": %d,\n", s.staticCollisions);
     std::fprintf(f, "  \"iterations\": %d,\n", s.iterations);
     std::fprintf(f, "  \"aborted_paths\": %d,\n", s.abortedPaths);
+    std::fprintf(f, "  \"hover_evasions\": %d,\n", s.hoverEvasions);
+    std::fprintf(f, "  \"stale_plans\": %d,\n", s.stalePlans);
     std::fprintf(f, "  \"finished\": %s,\n", s.finished ? "true" : "false");
     std::fprintf(f, "  \"end_reason\": %s,\n", jsonString(s.endReason).c_str());
     std::fprintf(f, "  \"known_volume_m3\": %.4f,\n", s.knownVolume);

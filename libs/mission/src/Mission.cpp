@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <random>
 #include <sstream>
@@ -211,8 +212,13 @@ struct Mission::Impl {
      * Advances the world by dt (or until the drone reaches its goal when flying); returns true
      * when the drone reached its goal.
      */
-    bool advance(double dt, bool flying) {
-        const double end = t + dt;
+    bool advance(double dt, bool flying) { return advanceUntil(t + dt, flying); }
+
+    /**
+     * Advances the world to `end`, or until the drone reaches its goal when flying (true), or,
+     * while hovering with watchingHover, until the planner asks to evade (pendingEvasion).
+     */
+    bool advanceUntil(double end, bool flying) {
         while (t < end - kEps && !stopping()) {
             double h = std::min({end - t, nextFrame - t, kMaxStep});
             if (exploring())
@@ -233,15 +239,43 @@ struct Mission::Impl {
             monitor.update(t, drone.pose(), people.states());
             for (std::size_t e = episodes; e < monitor.events().size(); ++e)
                 collisionTracked.push_back(trackedAtCollision(monitor.events()[e].personIndex));
+            bool captured = false;
             if (t >= nextFrame - kEps) {
                 captureFrame();
                 nextFrame += framePeriod;
+                captured = true;
             }
             recordDueSamples();
             if (reached)
                 return true;
+            if (captured && !flying && watchingHover && planner->usesPeople()) {
+                pendingEvasion = planner->evasion(context());
+                if (pendingEvasion)
+                    return false;
+            }
         }
         return false;
+    }
+
+    /**
+     * Hovers until `end` (while the planner plans, or waiting). At every frame a people-aware
+     * planner is asked whether hovering here stays safe, and its escape is flown at once when
+     * not; hovering then goes on to `end`. Returns whether the drone evaded (it moved).
+     */
+    bool hoverUntil(double end) {
+        bool evaded = false;
+        while (t < end - kEps && !stopping()) {
+            watchingHover = true;
+            advanceUntil(end, false);
+            watchingHover = false;
+            if (!pendingEvasion)
+                break;
+            const planning::Plan escape = std::move(*pendingEvasion);
+            pendingEvasion.reset();
+            evaded = true;
+            flyEscape(escape);
+        }
+        return evaded;
     }
 
     /** Flies to the goal; returns false when the planner aborted the flight. */
@@ -264,11 +298,40 @@ struct Mission::Impl {
         nextFrame = framePeriod;
         FlatPose goal = drone.pose();
         goal.position.z() += settings.climb;
-        flyTo(goal);
+        if (flyEvading(goal))
+            goal.position = drone.pose().position;  // go on from where the escape ended
         for (int quarter = 1; quarter <= 4; ++quarter) {
             goal.yaw = wrapAngle(quarter * M_PI / 2.0);
-            flyTo(goal);
+            if (flyEvading(goal))
+                goal.position = drone.pose().position;
         }
+    }
+
+    /**
+     * A take-off move (the climb, a turn on the spot): at every frame a people-aware planner
+     * is asked whether staying here is safe, and the move gives way to its escape when not.
+     * Returns whether the drone evaded.
+     */
+    bool flyEvading(const FlatPose& goal) {
+        drone.setGoal(goal);
+        while (drone.hasGoal() && !stopping()) {
+            advance(framePeriod, true);
+            if (!drone.hasGoal() || !planner->usesPeople())
+                continue;
+            if (const std::optional<planning::Plan> escape = planner->evasion(context())) {
+                drone.clearGoal();
+                flyEscape(*escape);
+                return true;
+            }
+        }
+        drone.clearGoal();
+        return false;
+    }
+
+    void flyEscape(const planning::Plan& escape) {
+        ++hoverEvasions;
+        for (std::size_t i = 0; i < escape.waypoints.size() && !stopping(); ++i)
+            flyTo(escape.waypoints[i].pose, &escape, i);
     }
 
     /** Whether a track lay on the person (within a body's width) as the collision began. */
@@ -299,7 +362,13 @@ struct Mission::Impl {
         return ctx;
     }
 
-    planning::Plan planOnce() {
+    /**
+     * One plan, made from the state when planning began; the world goes on for the time it
+     * takes, with the drone hovering and evading as needed (hoverUntil). nullopt when the plan
+     * is stale by the time it is done: the drone evaded meanwhile, or the path is no longer
+     * safe against what the frames taken meanwhile predict, its times counted from now.
+     */
+    std::optional<planning::Plan> planOnce() {
         const planning::PlanningContext ctx = context();
         const auto t0 = Clock::now();
         planning::Plan plan = planner->plan(ctx);
@@ -311,21 +380,32 @@ struct Mission::Impl {
         planningCharged += charged;
         recorder.addPlan(explorationTime(), charged, wall, statusName(plan), plan.gain,
                          static_cast<int>(plan.waypoints.size()), plan.reason);
-        advance(charged, false);  // hover while planning: people keep walking
+        const double framesBefore = nextFrame;
+        if (hoverUntil(t + charged))
+            return std::nullopt;
+        const bool newFrames = nextFrame != framesBefore;
+        if (newFrames && planner->usesPeople() && !plan.waypoints.empty() &&
+            !planner->startsSafely(context(), plan)) {
+            ++stalePlans;
+            return std::nullopt;
+        }
         return plan;
     }
 
     void explore() {
         int failedPlans = 0;
         while (!stopping()) {
-            const planning::Plan plan = planOnce();
+            const std::optional<planning::Plan> made = planOnce();
+            if (!made)
+                continue;  // stale by the time it was done: plan again from here
+            const planning::Plan& plan = *made;
             if (plan.status == planning::Plan::Status::Finished) {
                 finished = true;
                 endReason = "planner finished: " + plan.reason;
                 return;
             }
             if (plan.waypoints.empty() && plan.waitSeconds > 0) {
-                advance(plan.waitSeconds, false);  // the planner waits for people to pass
+                hoverUntil(t + plan.waitSeconds);  // the planner waits for people to pass
                 continue;
             }
             if (plan.waypoints.empty()) {
@@ -368,6 +448,8 @@ struct Mission::Impl {
         s.staticCollisions = monitor.staticCollisions();
         s.iterations = iterations;
         s.abortedPaths = abortedPaths;
+        s.hoverEvasions = hoverEvasions;
+        s.stalePlans = stalePlans;
         s.finished = finished;
         s.endReason = endReason;
         s.wallTime = wallTime;
@@ -419,6 +501,10 @@ struct Mission::Impl {
     double planningCharged = 0.0;
     int iterations = 0;
     int abortedPaths = 0;
+    int hoverEvasions = 0;  ///< escapes flown while hovering (take-off, planning, waiting)
+    int stalePlans = 0;     ///< plans unsafe against the frames taken while they were made
+    bool watchingHover = false;
+    std::optional<planning::Plan> pendingEvasion;
     bool finished = false;
     std::string endReason;
     RunProvenance invocation;

@@ -66,14 +66,18 @@ DaepPlanner::DaepPlanner(const DaepParams& params, const GainParams& gain, std::
     gainEvaluator().setBorderBoost(params.borderBoost, params.borderDistance);
 }
 
-void DaepPlanner::observePeople(const PlanningContext& context) {
-    facingTravel_ =
-        params_.faceTravel == "true" || (params_.faceTravel == "auto" && context.peopleFromCamera);
+DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const {
     SafetyParams safety = params_.safety;
     safety.droneSize = context.droneSize;
     safety.personSize = context.personSize;
-    obstacles_ = DynamicObstacles(
+    return DynamicObstacles(
         safety, context.people ? *context.people : std::vector<perception::PersonForecast>{});
+}
+
+void DaepPlanner::observePeople(const PlanningContext& context) {
+    facingTravel_ =
+        params_.faceTravel == "true" || (params_.faceTravel == "auto" && context.peopleFromCamera);
+    obstacles_ = obstaclesOf(context);
     if (dfm_.width() == 0) {
         dfm_ = FrequencyMap(context.explorationBox, params_.dfmCellSize);
         watch_ = BlindWatch(dfm_, params_.blind);
@@ -291,6 +295,14 @@ Plan DaepPlanner::escape(const PlanningContext& context) {
     return bestEscape(context);
 }
 
+std::optional<Plan> DaepPlanner::evasion(const PlanningContext& context) {
+    const Eigen::Vector3d& here = context.pose.position;
+    if (obstaclesOf(context).isSafeToHover(here, context.time,
+                                           context.time + params_.evasionHorizon))
+        return std::nullopt;
+    return escape(context);
+}
+
 namespace {
 
 /** Clearance (m) an unsafe escape may give up to stay off walkways unseen people may use. */
@@ -418,13 +430,22 @@ bool DaepPlanner::keepFlying(const PlanningContext& context, const Plan& plan,
         return false;
     if (plan.escape)
         return true;  // already the move with the most clearance: stopping it helps nobody
+    return movesClear(obstacles_, context, plan, nextWaypoint);
+}
+
+bool DaepPlanner::movesClear(const DynamicObstacles& bodies, const PlanningContext& context,
+                             const Plan& plan, std::size_t nextWaypoint) const {
     for (const TimedSegment& move : timedMoves(context, plan, nextWaypoint)) {
         if (move.start > context.time + params_.safety.horizon)
             break;
-        if (!obstacles_.isSafe(move, params_.recheckClearanceScale))
+        if (!bodies.isSafe(move, params_.recheckClearanceScale))
             return false;
     }
     return true;
+}
+
+bool DaepPlanner::startsSafely(const PlanningContext& context, const Plan& plan) const {
+    return plan.escape || movesClear(obstaclesOf(context), context, plan, 0);
 }
 
 }  // namespace daep::planning

@@ -35,7 +35,9 @@ struct RunSummary {
     int collisions = 0;
     int staticCollisions = 0;
     int iterations = 0;
-    int abortedPaths = 0;  ///< paths the planner stopped in flight (re-plans)
+    int abortedPaths = 0;   ///< paths the planner stopped in flight (re-plans)
+    int hoverEvasions = 0;  ///< escapes flown while hovering (planning or waiting)
+    int stalePlans = 0;     ///< plans dropped: unsafe against the frames taken while made
     bool finished = false;
     double wallTime = 0.0;
     double knownVolume = 0.0;

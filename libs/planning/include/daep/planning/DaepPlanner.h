@@ -85,6 +85,14 @@ public:
      */
     Plan escape(const PlanningContext& context);
 
+    /**
+     * While hovering: nullopt when hovering here stays clear of the predicted bodies for
+     * evasion_horizon_s (checked without touching the frequency map or the blind watch), else
+     * escape(context).
+     */
+    std::optional<Plan> evasion(const PlanningContext& context) override;
+    bool startsSafely(const PlanningContext& context, const Plan& plan) const override;
+
     /** The timed moves of a plan flown from the context's pose and time. */
     std::vector<TimedSegment> timedMoves(const PlanningContext& context, const Plan& plan,
                                          std::size_t fromWaypoint) const;
@@ -104,6 +112,11 @@ protected:
 
 private:
     void observePeople(const PlanningContext& context);
+    /** The people of the context as predicted bodies, sized for this drone and these people. */
+    DynamicObstacles obstaclesOf(const PlanningContext& context) const;
+    /** Whether the plan's moves from nextWaypoint on, within the safety horizon, are clear. */
+    bool movesClear(const DynamicObstacles& bodies, const PlanningContext& context,
+                    const Plan& plan, std::size_t nextWaypoint) const;
     /** The predicted bodies at time t within the gain's range of p (they can block its view). */
     std::vector<BodyOccluder> bodiesInView(const Eigen::Vector3d& p, double t) const;
     /**

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -96,6 +97,29 @@ public:
         (void)context;
         (void)plan;
         (void)nextWaypoint;
+        return true;
+    }
+
+    /**
+     * Asked at every camera frame while the drone hovers (planning, waiting) for planners that
+     * usePeople(): the escape to fly at once when hovering where the drone is would not stay
+     * clear of the predicted people, whatever plan is being made; nullopt while hovering is
+     * safe (and then nothing in the planner changes). Default: nullopt.
+     */
+    virtual std::optional<Plan> evasion(const PlanningContext& context) {
+        (void)context;
+        return std::nullopt;
+    }
+
+    /**
+     * Whether a plan made from an earlier context can still be started now: its moves, timed
+     * from context.time, clear of the context's people. Asked (for planners that usePeople())
+     * when frames came in while the plan was made; changes nothing in the planner. Default:
+     * true.
+     */
+    virtual bool startsSafely(const PlanningContext& context, const Plan& plan) const {
+        (void)context;
+        (void)plan;
         return true;
     }
 };
