@@ -298,19 +298,18 @@ struct Mission::Impl {
         nextFrame = framePeriod;
         FlatPose goal = drone.pose();
         goal.position.z() += settings.climb;
-        if (flyEvading(goal))
-            goal.position = drone.pose().position;  // go on from where the escape ended
+        flyTo(goal);  // off the ground first: no escape is known to be free down there
         for (int quarter = 1; quarter <= 4; ++quarter) {
             goal.yaw = wrapAngle(quarter * M_PI / 2.0);
             if (flyEvading(goal))
-                goal.position = drone.pose().position;
+                goal.position = drone.pose().position;  // go on from where the escape ended
         }
     }
 
     /**
-     * A take-off move (the climb, a turn on the spot): at every frame a people-aware planner
-     * is asked whether staying here is safe, and the move gives way to its escape when not.
-     * Returns whether the drone evaded.
+     * A turn of the take-off's look around: at every frame a people-aware planner is asked
+     * whether staying here is safe, and the turn gives way to its escape when not. Returns
+     * whether the drone evaded.
      */
     bool flyEvading(const FlatPose& goal) {
         drone.setGoal(goal);

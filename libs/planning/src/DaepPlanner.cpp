@@ -300,7 +300,10 @@ std::optional<Plan> DaepPlanner::evasion(const PlanningContext& context) {
     if (obstaclesOf(context).isSafeToHover(here, context.time,
                                            context.time + params_.evasionHorizon))
         return std::nullopt;
-    return escape(context);
+    Plan plan = escape(context);
+    if (!plan.escape)
+        return std::nullopt;  // no move is free of static obstacles: go on with what it does
+    return plan;
 }
 
 namespace {

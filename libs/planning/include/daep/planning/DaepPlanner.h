@@ -88,7 +88,7 @@ public:
     /**
      * While hovering: nullopt when hovering here stays clear of the predicted bodies for
      * evasion_horizon_s (checked without touching the frequency map or the blind watch), else
-     * escape(context).
+     * escape(context) if it found a move free of static obstacles.
      */
     std::optional<Plan> evasion(const PlanningContext& context) override;
     bool startsSafely(const PlanningContext& context, const Plan& plan) const override;
