@@ -12,11 +12,13 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <deque>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <new>
+#include <utility>
 
 #include "daep/common/Error.h"
 
@@ -126,6 +128,16 @@ bool isEndOfData(const std::string& reason) {
     return reason.find("EOF") != std::string::npos;
 }
 
+/**
+ * The byte behind a bool that MRPT read from the file as it stands there: 0 or 1 unless the
+ * file is corrupt (reading any other as a bool is undefined behaviour; found by fuzz_rawlog).
+ */
+unsigned storedByte(const bool& flag) {
+    unsigned char byte = 0;
+    std::memcpy(&byte, &flag, 1);
+    return byte;
+}
+
 bool finitePose(const mrpt::poses::CPose3D& p) {
     for (const double v : {p.x(), p.y(), p.z(), p.yaw(), p.pitch(), p.roll()})
         if (!std::isfinite(v) || std::abs(v) > kMaxCoordinate)
@@ -200,6 +212,7 @@ struct RawlogReader::Impl {
         auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(o);
         if (!scan || (!sensorLabel.empty() && scan->sensorLabel != sensorLabel))
             return nullptr;
+        checkFlags(*scan);
         try {
             scan->load();  // externally stored images (<rawlog>_Images/)
         } catch (const std::exception& e) {
@@ -209,6 +222,16 @@ struct RawlogReader::Impl {
             return nullptr;
         checkDepthFrame(*scan);
         return scan;
+    }
+
+    /** The flags the mapping and the detector read must be bools. */
+    void checkFlags(const mrpt::obs::CObservation3DRangeScan& scan) const {
+        const std::pair<const char*, const bool*> flags[] = {
+            {"hasRangeImage", &scan.hasRangeImage}, {"range_is_depth", &scan.range_is_depth}};
+        for (const auto& [name, flag] : flags)
+            if (storedByte(*flag) > 1)
+                fail("corrupt rawlog: the depth frame in " + where(objects) + " has " + name +
+                     " = " + std::to_string(storedByte(*flag)) + ", not a bool");
     }
 
     /** What the mapping and the detector index or divide by must make sense. */
