@@ -215,11 +215,14 @@ TEST_F(DaepRoom, EvasionWhileHoveringOnlyWhenHoveringHereIsNoLongerSafe) {
     PlanningContext ctx = contextFor(*map, root);
     const std::vector<PersonForecast> far{walker(0, {0.5, 3.5}, {0, 0}, ctx.time)};
     ctx.people = &far;
-    EXPECT_FALSE(planner.evasion(ctx).has_value());
+    const double later = ctx.time + 100.0;  // capped at evasion_horizon_s
+    EXPECT_FALSE(planner.evasion(ctx, later).has_value());
     // The same person 1.6 m away, coming straight at the drone: escape now.
     const std::vector<PersonForecast> coming{walker(0, {3.6, 2.0}, {-0.35, 0}, ctx.time)};
     ctx.people = &coming;
-    const std::optional<Plan> escape = planner.evasion(ctx);
+    // Not when the drone hovers for only 0.3 s more: the plan then in hand will see to it.
+    EXPECT_FALSE(planner.evasion(ctx, ctx.time + 0.3).has_value());
+    const std::optional<Plan> escape = planner.evasion(ctx, later);
     ASSERT_TRUE(escape.has_value());
     EXPECT_TRUE(escape->escape) << escape->reason;
     ASSERT_EQ(escape->waypoints.size(), 1u);

@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <optional>
 #include <ostream>
 #include <random>
@@ -249,7 +250,7 @@ struct Mission::Impl {
             if (reached)
                 return true;
             if (captured && !flying && watchingHover && planner->usesPeople()) {
-                pendingEvasion = planner->evasion(context());
+                pendingEvasion = planner->evasion(context(), hoverSafeUntil);
                 if (pendingEvasion)
                     return false;
             }
@@ -263,6 +264,9 @@ struct Mission::Impl {
      * not; hovering then goes on to `end`. Returns whether the drone evaded (it moved).
      */
     bool hoverUntil(double end) {
+        // Hovering must stay safe until what is planned meanwhile can act on it: the end of
+        // this hover, another as long (a plan dropped as stale), and a frame.
+        hoverSafeUntil = end + (end - t) + framePeriod;
         bool evaded = false;
         while (t < end - kEps && !stopping()) {
             watchingHover = true;
@@ -317,7 +321,9 @@ struct Mission::Impl {
             advance(framePeriod, true);
             if (!drone.hasGoal() || !planner->usesPeople())
                 continue;
-            if (const std::optional<planning::Plan> escape = planner->evasion(context())) {
+            const double committed = std::numeric_limits<double>::infinity();  // the whole turn
+            if (const std::optional<planning::Plan> escape =
+                    planner->evasion(context(), committed)) {
                 drone.clearGoal();
                 flyEscape(*escape);
                 return true;
@@ -503,6 +509,7 @@ struct Mission::Impl {
     int hoverEvasions = 0;  ///< escapes flown while hovering (take-off, planning, waiting)
     int stalePlans = 0;     ///< plans unsafe against the frames taken while they were made
     bool watchingHover = false;
+    double hoverSafeUntil = 0.0;  ///< while watchingHover: how long hovering must stay safe
     std::optional<planning::Plan> pendingEvasion;
     bool finished = false;
     std::string endReason;

@@ -295,10 +295,10 @@ Plan DaepPlanner::escape(const PlanningContext& context) {
     return bestEscape(context);
 }
 
-std::optional<Plan> DaepPlanner::evasion(const PlanningContext& context) {
+std::optional<Plan> DaepPlanner::evasion(const PlanningContext& context, double until) {
     const Eigen::Vector3d& here = context.pose.position;
-    if (obstaclesOf(context).isSafeToHover(here, context.time,
-                                           context.time + params_.evasionHorizon))
+    const double end = std::min(until, context.time + params_.evasionHorizon);
+    if (obstaclesOf(context).isSafeToHover(here, context.time, end))
         return std::nullopt;
     Plan plan = escape(context);
     if (!plan.escape)

@@ -86,11 +86,11 @@ public:
     Plan escape(const PlanningContext& context);
 
     /**
-     * While hovering: nullopt when hovering here stays clear of the predicted bodies for
-     * evasion_horizon_s (checked without touching the frequency map or the blind watch), else
-     * escape(context) if it found a move free of static obstacles.
+     * While hovering: nullopt when hovering here stays clear of the predicted bodies until
+     * `until`, at most evasion_horizon_s ahead (checked without touching the frequency map or
+     * the blind watch), else escape(context) if it found a move free of static obstacles.
      */
-    std::optional<Plan> evasion(const PlanningContext& context) override;
+    std::optional<Plan> evasion(const PlanningContext& context, double until) override;
     bool startsSafely(const PlanningContext& context, const Plan& plan) const override;
 
     /** The timed moves of a plan flown from the context's pose and time. */

@@ -103,11 +103,13 @@ public:
     /**
      * Asked at every camera frame while the drone hovers (planning, waiting) for planners that
      * usePeople(): the escape to fly at once when hovering where the drone is would not stay
-     * clear of the predicted people, whatever plan is being made; nullopt while hovering is
-     * safe (and then nothing in the planner changes). Default: nullopt.
+     * clear of the predicted people until `until` (the planner may cap it), whatever plan is
+     * being made; nullopt while hovering is safe (and then nothing in the planner changes).
+     * Default: nullopt.
      */
-    virtual std::optional<Plan> evasion(const PlanningContext& context) {
+    virtual std::optional<Plan> evasion(const PlanningContext& context, double until) {
         (void)context;
+        (void)until;
         return std::nullopt;
     }
 
