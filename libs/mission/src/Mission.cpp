@@ -7,7 +7,6 @@
 #include <exception>
 #include <filesystem>
 #include <iomanip>
-#include <limits>
 #include <optional>
 #include <ostream>
 #include <random>
@@ -302,35 +301,11 @@ struct Mission::Impl {
         nextFrame = framePeriod;
         FlatPose goal = drone.pose();
         goal.position.z() += settings.climb;
-        flyTo(goal);  // off the ground first: no escape is known to be free down there
+        flyTo(goal);
         for (int quarter = 1; quarter <= 4; ++quarter) {
             goal.yaw = wrapAngle(quarter * M_PI / 2.0);
-            if (flyEvading(goal))
-                goal.position = drone.pose().position;  // go on from where the escape ended
+            flyTo(goal);
         }
-    }
-
-    /**
-     * A turn of the take-off's look around: at every frame a people-aware planner is asked
-     * whether staying here is safe, and the turn gives way to its escape when not. Returns
-     * whether the drone evaded.
-     */
-    bool flyEvading(const FlatPose& goal) {
-        drone.setGoal(goal);
-        while (drone.hasGoal() && !stopping()) {
-            advance(framePeriod, true);
-            if (!drone.hasGoal() || !planner->usesPeople())
-                continue;
-            const double committed = std::numeric_limits<double>::infinity();  // the whole turn
-            if (const std::optional<planning::Plan> escape =
-                    planner->evasion(context(), committed)) {
-                drone.clearGoal();
-                flyEscape(*escape);
-                return true;
-            }
-        }
-        drone.clearGoal();
-        return false;
     }
 
     void flyEscape(const planning::Plan& escape) {
@@ -506,7 +481,7 @@ struct Mission::Impl {
     double planningCharged = 0.0;
     int iterations = 0;
     int abortedPaths = 0;
-    int hoverEvasions = 0;  ///< escapes flown while hovering (take-off, planning, waiting)
+    int hoverEvasions = 0;  ///< escapes flown while hovering (planning, waiting)
     int stalePlans = 0;     ///< plans unsafe against the frames taken while they were made
     bool watchingHover = false;
     double hoverSafeUntil = 0.0;  ///< while watchingHover: how long hovering must stay safe
