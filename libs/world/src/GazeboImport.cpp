@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "daep/common/Error.h"
+#include "daep/common/FileChecks.h"
 #include "daep/common/IniText.h"
 
 namespace daep::world {
@@ -351,19 +352,19 @@ private:
     /** model.sdf of a model dir, or the file named by model.config's <sdf>. */
     static std::string modelSdfPath(const std::string& dir) {
         const fs::path config = fs::path(dir) / "model.config";
-        if (fs::exists(config)) {
+        if (daep::pathExists(config)) {
             tinyxml2::XMLDocument doc;
             parseXml(doc, readTextFile(config.string()), config.string());
             const XMLElement* root = doc.RootElement();
             const XMLElement* sdf = root ? root->FirstChildElement("sdf") : nullptr;
             if (sdf && sdf->GetText()) {
                 const fs::path p = fs::path(dir) / trim(sdf->GetText());
-                if (fs::exists(p))
+                if (daep::pathExists(p))
                     return p.string();
             }
         }
         const fs::path p = fs::path(dir) / "model.sdf";
-        if (!fs::exists(p))
+        if (!daep::pathExists(p))
             throw InputError(dir + ": no model.sdf (and no <sdf> in model.config)");
         return p.string();
     }
@@ -374,7 +375,7 @@ private:
             const std::string rest = uri.substr(8);
             for (const auto& dir : options_.modelPaths) {
                 const fs::path p = fs::path(dir) / rest;
-                if (fs::exists(p))
+                if (daep::pathExists(p))
                     return fs::absolute(p).lexically_normal().string();
             }
             skipOrFail(
@@ -390,7 +391,7 @@ private:
         fs::path p(path);
         if (p.is_relative())
             p = fs::path(f.dir) / p;
-        if (fs::exists(p))
+        if (daep::pathExists(p))
             return fs::absolute(p).lexically_normal().string();
         skipOrFail(f, where, "'" + uri + "' not found (looked for " + p.string() + ")");
         return "";

@@ -14,6 +14,7 @@
 #include "PlyPoints.h"
 #include "StderrCapture.h"
 #include "daep/common/Error.h"
+#include "daep/common/FileChecks.h"
 
 namespace daep::world {
 namespace {
@@ -26,7 +27,7 @@ const char* const kFullHeader = "# Octomap OcTree file";
 }
 
 std::string firstLine(const std::string& path) {
-    if (std::filesystem::is_directory(path))
+    if (daep::isDirectory(path))
         fail(path, "is a directory, not an OctoMap file");
     std::ifstream in(path, std::ios::binary);
     if (!in)

@@ -18,6 +18,7 @@
 #include "YamlDuplicateKeys.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
+#include "daep/common/FileChecks.h"
 #include "daep/world/VoxelMaps.h"
 #include "daep/world/WorldSpec.h"
 
@@ -256,7 +257,7 @@ yaml parseYaml(const std::string& text, const std::string& file) {
 
 std::string readText(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in || fs::is_directory(path))
+    if (!in || daep::isDirectory(path))
         throw InputError(path + ": cannot read the world file");
     std::ostringstream ss;
     ss << in.rdbuf();
@@ -322,7 +323,7 @@ TriangleMesh parseMesh(const Field& f, const fs::path& baseDir) {
     const Field fileField = f.at("file");
     const std::string rel = fileField.text();
     const fs::path file = fs::path(rel).is_absolute() ? fs::path(rel) : baseDir / rel;
-    if (!fs::is_regular_file(file))
+    if (!daep::isRegularFile(file))
         fileField.fail("mesh file '" + rel + "' not found (looked for " + file.string() + ")");
     const auto position = f.find("position");
     const auto scale = f.find("scale");
@@ -359,7 +360,7 @@ PersonRoute parsePerson(const Field& f) {
 std::string dataFile(const Field& fileField, const fs::path& baseDir, const std::string& what) {
     const std::string rel = fileField.text();
     const fs::path file = fs::path(rel).is_absolute() ? fs::path(rel) : baseDir / rel;
-    if (!fs::is_regular_file(file))
+    if (!daep::isRegularFile(file))
         fileField.fail(what + " file '" + rel + "' not found (looked for " + file.string() + ")");
     return file.string();
 }
@@ -512,10 +513,10 @@ std::vector<std::string> builtinWorldNames() {
 }
 
 std::string resolveWorldPath(const std::string& nameOrPath) {
-    if (fs::is_regular_file(nameOrPath))
+    if (daep::isRegularFile(nameOrPath))
         return nameOrPath;
     const fs::path builtin = fs::path(shareDirectory()) / "worlds" / (nameOrPath + ".yaml");
-    if (!nameOrPath.empty() && fs::is_regular_file(builtin))
+    if (!nameOrPath.empty() && daep::isRegularFile(builtin))
         return builtin.string();
     std::string known;
     for (const auto& n : builtinWorldNames())
