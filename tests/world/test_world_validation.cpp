@@ -129,6 +129,14 @@ TEST(WorldValidation, DuplicateKeysNameTheLine) {
                 {"bad_world.yaml:11:", "duplicate key 'name'", "first given on line 9"});
 }
 
+TEST(WorldValidation, BytesThatAreNotUtf8NameTheLine) {
+    // libfyaml loops forever on a directive followed by 0xff (found by fuzz_world_file).
+    expectError(room("[[2, 2, 0.2]]", "# caf\xe9\n"), {"bad_world.yaml:8:", "not UTF-8 text"});
+    expectError("%pe\xff\xff\xff\n", {"bad_world.yaml:1:", "not UTF-8 text"});
+    const std::string utf8 = loadError(room("[[2, 2, 0.2]]", "# caf\xc3\xa9, \xe2\x82\xac\n"));
+    EXPECT_EQ(utf8.find("not UTF-8"), std::string::npos) << utf8;
+}
+
 TEST(YamlDuplicateKeys, SameKeysInSiblingMappingsAreNotDuplicates) {
     const std::string ok =
         "a: 1\nlist:\n  - {name: x, v: 1}\n  - {name: y, v: 2}\n"

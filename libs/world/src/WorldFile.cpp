@@ -237,7 +237,32 @@ std::string syntaxError(const std::string& file, const std::string& text,
     return file + ": YAML syntax error: " + mrptMessage(what);
 }
 
+/** The 1-based line of the first byte sequence that is not UTF-8 in `text`; 0 if none. */
+int firstLineNotUtf8(const std::string& text) {
+    int line = 1;
+    for (std::size_t i = 0; i < text.size();) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        const int more = c < 0x80           ? 0
+                         : (c >> 5) == 0x6  ? 1
+                         : (c >> 4) == 0xe  ? 2
+                         : (c >> 3) == 0x1e ? 3
+                                            : -1;
+        if (more < 0 || i + more >= text.size() + (more == 0 ? 1 : 0))
+            return line;
+        for (int k = 1; k <= more; ++k)
+            if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2)
+                return line;
+        line += c == '\n';
+        i += 1 + more;
+    }
+    return 0;
+}
+
 yaml parseYaml(const std::string& text, const std::string& file) {
+    // YAML is Unicode text; libfyaml loops forever on some invalid bytes (a '%' directive
+    // followed by 0xff: found by fuzz_world_file), so they are refused before it sees them.
+    if (const int line = firstLineNotUtf8(text))
+        throw InputError(file + ":" + std::to_string(line) + ": not UTF-8 text");
     StderrCapture capture;
     yaml doc;
     try {
