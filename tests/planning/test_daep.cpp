@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "PlanningTestUtil.h"
 #include "daep/common/Error.h"
@@ -447,6 +448,129 @@ TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
         const Plan plan = planner.plan(ctx);
         ASSERT_FALSE(plan.waypoints.empty());
         EXPECT_EQ(plan.reason.rfind("look:", 0), std::string::npos) << guard << plan.reason;
+    }
+}
+
+/**
+ * The Exhibition corner: a 6 x 6 m room, all of it seen, and a person walking at 0.35 m/s
+ * straight at a drone that stopped in its south-west corner.
+ */
+struct CornerRoom : ::testing::Test {
+    void SetUp() override {
+        map = test::makeMap(test::box(0, 0, 0, 6, 6, 2), 10.0);
+        const Aabb walls = test::box(-0.1, -0.1, -0.1, 6.1, 6.1, 2.1);
+        map->insertPointCloud(middle, test::roomScan(walls, middle, 0.5));
+    }
+    /** Someone 2.1 m from `stop` (diagonally, from the north-east), walking straight at it. */
+    static std::vector<PersonForecast> walkerComingAt(const Eigen::Vector3d& stop, double t) {
+        const Eigen::Vector2d from = stop.head<2>() + Eigen::Vector2d(1.5, 1.5);
+        std::vector<PersonForecast> people{walker(0, from, {-0.25, -0.25}, t)};
+        people[0].accelNoise = 1e-4;  // a steady walker: the prediction stays tight
+        people[0].covariance.diagonal() << 1e-4, 1e-4, 1e-5, 1e-5;
+        return people;
+    }
+    /**
+     * The most clearance any escape from `at` keeps (flying there, then hovering until the
+     * walker has passed), over the short moves the planner picks escapes from.
+     */
+    static double bestEscapeGap(const DaepPlanner& planner, const mapping::ExplorationMap& map,
+                                const PlanningContext& ctx, const Eigen::Vector3d& at) {
+        const double r = planner.params().robotRadius;
+        const Aabb box = shrink(ctx.explorationBox, r);
+        double best = -std::numeric_limits<double>::infinity();
+        for (const double d : {0.4, 0.8, 1.2, 1.6})
+            for (int k = 0; k < 16; ++k) {
+                const double a = 2 * M_PI * k / 16;
+                const FlatPose to{at + d * Eigen::Vector3d(std::cos(a), std::sin(a), 0),
+                                  ctx.pose.yaw};
+                if (!box.contains(to.position) || !map.isSegmentFree(at, to.position, r))
+                    continue;
+                const TimedSegment move = timedSegment(ctx.pose, to, ctx.time, 0.5, 1.0);
+                TimedSegment hover;
+                hover.from = hover.to = to.position;
+                hover.start = move.end();
+                hover.turnTime = ctx.time + 12.0 - move.end();
+                best = std::max(best, std::min(planner.obstacles().clearance(move),
+                                               planner.obstacles().clearance(hover)));
+            }
+        return best;
+    }
+    const Eigen::Vector3d middle{3.0, 3.0, 1.0};
+    const Eigen::Vector3d corner{0.7, 0.7, 1.0};
+    std::unique_ptr<mapping::ExplorationMap> map;
+};
+
+TEST_F(CornerRoom, CorneredByAWalkerNoEscapeKeepsClearOfThem) {
+    // The situation that ended in collisions: every escape from the corner runs along a wall,
+    // within reach of the person coming in; in the open the same walker is easily escaped.
+    for (const bool cornered : {true, false}) {
+        DaepPlanner planner = makePlanner(3);
+        const Eigen::Vector3d at = cornered ? corner : middle;
+        PlanningContext ctx = contextFor(*map, at, M_PI / 4);  // facing them
+        const std::vector<PersonForecast> people = walkerComingAt(at, ctx.time);
+        ctx.people = &people;
+        ASSERT_TRUE(planner.evasion(ctx, ctx.time + 10).has_value()) << cornered;
+        const double gap = bestEscapeGap(planner, *map, ctx, at);
+        if (cornered) {
+            EXPECT_LT(gap, 0.0);
+        } else {
+            EXPECT_GT(gap, 0.0);
+        }
+        EXPECT_EQ(planner.isTrap(ctx, at, ctx.time), cornered);
+    }
+}
+
+TEST_F(CornerRoom, TheCornerIsATrapOnlyWhileSomeoneCanWalkUpToItInTime) {
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, middle);
+    const std::vector<PersonForecast> nobody;
+    ctx.people = &nobody;
+    planner.plan(ctx);
+    EXPECT_FALSE(planner.isTrap(ctx, corner, ctx.time + 5));
+    // Standing in the far corner: 6.6 m away, more than trap_horizon_s at walking speed.
+    const std::vector<PersonForecast> far{walker(0, {5.4, 5.4}, {0, 0}, ctx.time)};
+    ctx.people = &far;
+    planner.plan(ctx);
+    EXPECT_FALSE(planner.isTrap(ctx, corner, ctx.time + 5));
+    // Standing 2.1 m away: they could be at the drone in 3 s.
+    const std::vector<PersonForecast> near{walker(0, {2.2, 2.2}, {0, 0}, ctx.time)};
+    ctx.people = &near;
+    planner.plan(ctx);
+    EXPECT_TRUE(planner.isTrap(ctx, corner, ctx.time + 5));
+    // Walking away, they are out of reach by the time the drone arrives.
+    const std::vector<PersonForecast> leaving{walker(0, {2.2, 2.2}, {0.3, 0.3}, ctx.time)};
+    ctx.people = &leaving;
+    planner.plan(ctx);
+    EXPECT_FALSE(planner.isTrap(ctx, corner, ctx.time + 15));
+    // A wall alone is no trap: along it the drone gets out of their way.
+    EXPECT_FALSE(planner.isTrap(ctx, {3.0, 0.7, 1.0}, ctx.time + 5)) << "south wall";
+    // Switched off.
+    ctx.people = &near;
+    DaepPlanner unguarded = makePlanner(3, "trap_horizon_s", "0");
+    unguarded.plan(ctx);
+    EXPECT_FALSE(unguarded.isTrap(ctx, corner, ctx.time + 5));
+}
+
+TEST_F(CornerRoom, APlanIntoTheCornerWhileSomeoneIsNearStopsShortOfIt) {
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, middle);
+    const std::vector<PersonForecast> near{walker(0, {2.2, 2.2}, {0, 0}, ctx.time)};
+    ctx.people = &near;
+    planner.plan(ctx);
+    Plan plan;
+    plan.status = Plan::Status::Path;
+    plan.waypoints.push_back({{{2.0, 3.5, 1.0}, 0.0}, ctx.time + 2.0});
+    plan.waypoints.push_back({{{0.7, 3.0, 1.0}, 0.0}, ctx.time + 5.0});
+    plan.waypoints.push_back({{corner, 0.0}, ctx.time + 10.0});
+    const Plan cut = planner.cutBeforeTrap(ctx, plan);
+    ASSERT_EQ(cut.waypoints.size(), 2u) << cut.reason;
+    EXPECT_NE(cut.reason.find("cut before a trap"), std::string::npos) << cut.reason;
+    // Every plan the planner hands out stops only where the drone can get away.
+    for (int k = 0; k < 5; ++k) {
+        const Plan made = planner.plan(ctx);
+        for (const Waypoint& w : made.waypoints)
+            EXPECT_FALSE(planner.isTrap(ctx, w.pose.position, w.arrivalTime)) << made.reason;
+        ctx.time += 0.5;
     }
 }
 

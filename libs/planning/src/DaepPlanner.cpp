@@ -1,5 +1,6 @@
 #include "daep/planning/DaepPlanner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -37,6 +38,7 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.borderDistance = requireNonNegative(r, "border_distance");
     p.useGp = r.requireBool("use_gp");
     p.evasionHorizon = requirePositive(r, "evasion_horizon_s");
+    p.trapHorizon = requireNonNegative(r, "trap_horizon_s");
     p.waitTime = requirePositive(r, "wait_s");
     p.faceTravel = requireOneOf(r, "face_travel_direction", {"auto", "true", "false"});
     p.blindGuard = requireOneOf(r, "blind_guard", {"auto", "true", "false"});
@@ -354,47 +356,111 @@ struct Escape {
 
 }  // namespace
 
-Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
+template <typename Visit>
+void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
+                                    Visit&& visit) const {
     const mapping::ExplorationMap& map = *context.map;
     const double r = params().robotRadius;
     const Aabb box = shrink(context.explorationBox, r);
-    const Eigen::Vector3d& from = context.pose.position;
     const bool leavingBlocked = !map.isSegmentFree(from, from, r);
-    const double halfFov = 0.5 * gainEvaluator().params().hfov;
-    bool any = false;
-    Escape best;
     for (const double distance : {0.4, 0.8, 1.2, 1.6}) {
         for (int k = 0; k < 16; ++k) {
             for (const double dz : {0.0, 0.4, -0.4}) {
                 const double a = 2.0 * M_PI * k / 16.0;
-                Escape e;
-                e.distance = distance;
-                e.seen = std::abs(wrapAngle(a - context.pose.yaw)) <= halfFov;
                 const Eigen::Vector3d to =
                     from + Eigen::Vector3d(distance * std::cos(a), distance * std::sin(a), dz);
                 if (!box.contains(to) || !segmentFlyable(map, from, to, r, leavingBlocked))
                     continue;
-                // Keep the heading: no turn, the drone moves at once.
-                e.goal = {to, context.pose.yaw};
-                const TimedSegment move =
-                    timedSegment(context.pose, e.goal, context.time, context.motion.speed,
-                                 context.motion.yawRate);
-                TimedSegment hover;
-                hover.from = hover.to = to;
-                hover.start = move.end();
-                hover.turnTime = std::max(0.0, context.time + params_.evasionHorizon - move.end());
-                const double hoverGap = obstacles_.clearance(hover);
-                e.gap = std::min(obstacles_.clearance(move), hoverGap);
-                e.gapUnderWay =
-                    std::min(obstacles_.clearance(move.after(move.start + params_.safety.timeStep)),
-                             hoverGap);
-                e.offWalkways = !blindThreat(context, to, hover.end()).has_value();
-                if (!any || e.betterThan(best))
-                    best = e;
-                any = true;
+                if (!visit(to, a, distance))
+                    return;
             }
         }
     }
+}
+
+namespace {
+
+/** Distance from p to the segment a-b, in the plane. */
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
+    const Eigen::Vector2d ab = b - a;
+    const double length2 = ab.squaredNorm();
+    const double s = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    return (a + s * ab - p).norm();
+}
+
+}  // namespace
+
+bool DaepPlanner::isTrap(const PlanningContext& context, const Eigen::Vector3d& stop,
+                         double arrival) const {
+    if (obstacles_.empty() || params_.trapHorizon <= 0.0)
+        return false;
+    const double keepOut = obstacles_.bodyKeepOut();
+    const Eigen::Vector2d at = stop.head<2>();
+    // Where each person who could walk up to the stop within trap_horizon_s of the drone's
+    // arrival will be then; they may turn towards the drone at any moment.
+    std::vector<Eigen::Vector2d> walkers;
+    for (const perception::PersonForecast& f : obstacles_.people()) {
+        const Eigen::Vector2d q = f.at(std::min(arrival, f.time + params_.safety.horizon)).mean;
+        const double speed = std::max(params_.blind.walkSpeed, f.velocity().norm());
+        if (speed > 0.0 && ((q - at).norm() - keepOut) / speed <= params_.trapHorizon)
+            walkers.push_back(q);
+    }
+    // Each needs an escape out of their way: a goal farther than the keep-out from their
+    // straight walk to the stop.
+    std::vector<bool> escaped(walkers.size(), false);
+    std::size_t left = walkers.size();
+    if (left > 0)
+        forEachEscapeGoal(context, stop, [&](const Eigen::Vector3d& to, double, double) {
+            for (std::size_t i = 0; i < walkers.size(); ++i)
+                if (!escaped[i] && distanceToSegment(to.head<2>(), walkers[i], at) > keepOut) {
+                    escaped[i] = true;
+                    --left;
+                }
+            return left > 0;
+        });
+    return left > 0;
+}
+
+Plan DaepPlanner::cutBeforeTrap(const PlanningContext& context, Plan plan) const {
+    for (std::size_t k = 0; k < plan.waypoints.size(); ++k) {
+        const Waypoint& stop = plan.waypoints[k];
+        if (!isTrap(context, stop.pose.position, stop.arrivalTime))
+            continue;
+        plan.waypoints.resize(k);
+        plan.reason += k == 0 ? "; first stop a trap" : "; cut before a trap";
+        break;
+    }
+    return plan;
+}
+
+Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
+    const Eigen::Vector3d& from = context.pose.position;
+    const double halfFov = 0.5 * gainEvaluator().params().hfov;
+    bool any = false;
+    Escape best;
+    forEachEscapeGoal(context, from, [&](const Eigen::Vector3d& to, double a, double distance) {
+        Escape e;
+        e.distance = distance;
+        e.seen = std::abs(wrapAngle(a - context.pose.yaw)) <= halfFov;
+        // Keep the heading: no turn, the drone moves at once.
+        e.goal = {to, context.pose.yaw};
+        const TimedSegment move = timedSegment(context.pose, e.goal, context.time,
+                                               context.motion.speed, context.motion.yawRate);
+        TimedSegment hover;
+        hover.from = hover.to = to;
+        hover.start = move.end();
+        hover.turnTime = std::max(0.0, context.time + params_.evasionHorizon - move.end());
+        const double hoverGap = obstacles_.clearance(hover);
+        e.gap = std::min(obstacles_.clearance(move), hoverGap);
+        e.gapUnderWay = std::min(
+            obstacles_.clearance(move.after(move.start + params_.safety.timeStep)), hoverGap);
+        e.offWalkways = !blindThreat(context, to, hover.end()).has_value();
+        if (!any || e.betterThan(best))
+            best = e;
+        any = true;
+        return true;
+    });
     if (!any)
         return wait(context, "a person is coming and no escape is free of static obstacles");
     Plan plan;
@@ -416,7 +482,8 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
     Plan plan = AepPlanner::plan(context);
     if (plan.status == Plan::Status::Finished)
         return hoverSafe ? plan : bestEscape(context);  // get clear first, then judge again
-    plan = cutAtFirstUnsafe(context, facingTravel(context, std::move(plan)));
+    plan =
+        cutBeforeTrap(context, cutAtFirstUnsafe(context, facingTravel(context, std::move(plan))));
     if (!plan.waypoints.empty()) {
         lookBeforeStop(context, plan);
         return plan;

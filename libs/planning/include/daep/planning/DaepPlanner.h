@@ -27,6 +27,11 @@ struct DaepParams {
     double evasionHorizon = 3.0;  ///< hovering must stay safe this long, or the drone escapes
     double waitTime = 0.4;        ///< hover this long when no move is safe and none is needed
     /**
+     * No trap: a stop that a person could walk up to within this time (s) of the drone's
+     * arrival needs an escape out of their way; 0 switches the check off.
+     */
+    double trapHorizon = 5.0;
+    /**
      * Turn to the direction of travel, fly, then turn to the view, so that the camera sees
      * who is in the way: always, never (AEP's turn to the view, then fly), or auto (when the
      * people come from the camera).
@@ -93,6 +98,17 @@ public:
     std::optional<Plan> evasion(const PlanningContext& context, double until) override;
     bool startsSafely(const PlanningContext& context, const Plan& plan) const override;
 
+    /**
+     * Whether the drone at `stop` from `arrival` on would be cornered: some person could walk
+     * up to it within trap_horizon_s (from where they are predicted then, at the larger of
+     * their speed and blind_walk_speed, straight at it), and no escape move from the stop
+     * (the short moves escape() picks from, free of static obstacles) ends farther than the
+     * keep-out from that straight walk.
+     */
+    bool isTrap(const PlanningContext& context, const Eigen::Vector3d& stop, double arrival) const;
+    /** The plan up to its first stop that is a trap (every waypoint is a stop: a turn). */
+    Plan cutBeforeTrap(const PlanningContext& context, Plan plan) const;
+
     /** The timed moves of a plan flown from the context's pose and time. */
     std::vector<TimedSegment> timedMoves(const PlanningContext& context, const Plan& plan,
                                          std::size_t fromWaypoint) const;
@@ -127,6 +143,13 @@ private:
     /** The plan up to its first unsafe move (at least one move, or none). */
     Plan cutAtFirstUnsafe(const PlanningContext& context, Plan plan) const;
     Plan bestEscape(const PlanningContext& context) const;
+    /**
+     * visit(goal, heading, distance) for every short straight escape move from `from` that is
+     * free of static obstacles, nearest first, until visit returns false.
+     */
+    template <typename Visit>
+    void forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
+                           Visit&& visit) const;
     /** The poses flown from a to b: with faceTravel, turning to the heading of travel first. */
     std::vector<FlatPose> movePoses(const FlatPose& a, const FlatPose& b) const;
     /** With faceTravel, every waypoint reached heading along its leg, then turned to its yaw. */
