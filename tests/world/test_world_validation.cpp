@@ -133,7 +133,14 @@ TEST(WorldValidation, BytesThatAreNotUtf8NameTheLine) {
     // libfyaml loops forever on a directive followed by 0xff (found by fuzz_world_file).
     expectError(room("[[2, 2, 0.2]]", "# caf\xe9\n"), {"bad_world.yaml:8:", "not UTF-8 text"});
     expectError("%pe\xff\xff\xff\n", {"bad_world.yaml:1:", "not UTF-8 text"});
-    const std::string utf8 = loadError(room("[[2, 2, 0.2]]", "# caf\xc3\xa9, \xe2\x82\xac\n"));
+    // ...and on a 4-byte form beyond U+10FFFF (lead 0xf6, found by a 1M-execution run); the
+    // other forms RFC 3629 rules out are refused too: overlong, surrogate, past U+10FFFF.
+    for (const char* bad :
+         {"%\xf6\x9a\x9a\x85\n", "a: \xc0\xaf\n", "a: \xe0\x80\xaf\n", "a: \xed\xa0\x80\n",
+          "a: \xf0\x80\x80\xaf\n", "a: \xf4\x90\x80\x80\n", "a: \xe2\x82\n"})
+        expectError(std::string("# ok\n") + bad, {"bad_world.yaml:2:", "not UTF-8 text"});
+    const std::string utf8 = loadError(
+        room("[[2, 2, 0.2]]", "# caf\xc3\xa9, \xe2\x82\xac \xf0\x9f\x9a\x81 \xf4\x8f\xbf\xbf\n"));
     EXPECT_EQ(utf8.find("not UTF-8"), std::string::npos) << utf8;
 }
 

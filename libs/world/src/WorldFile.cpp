@@ -237,23 +237,46 @@ std::string syntaxError(const std::string& file, const std::string& text,
     return file + ": YAML syntax error: " + mrptMessage(what);
 }
 
+/**
+ * Bytes after `lead` in its UTF-8 sequence, and the range its first continuation byte must lie
+ * in (RFC 3629: no overlong forms, no surrogates, nothing beyond U+10FFFF); -1 if no lead.
+ */
+int utf8Continuations(unsigned char lead, unsigned char& low, unsigned char& high) {
+    low = 0x80;
+    high = 0xbf;
+    if (lead < 0x80)
+        return 0;
+    if (lead >= 0xc2 && lead <= 0xdf)
+        return 1;
+    if (lead >= 0xe0 && lead <= 0xef) {
+        low = lead == 0xe0 ? 0xa0 : 0x80;
+        high = lead == 0xed ? 0x9f : 0xbf;
+        return 2;
+    }
+    if (lead >= 0xf0 && lead <= 0xf4) {
+        low = lead == 0xf0 ? 0x90 : 0x80;
+        high = lead == 0xf4 ? 0x8f : 0xbf;
+        return 3;
+    }
+    return -1;
+}
+
 /** The 1-based line of the first byte sequence that is not UTF-8 in `text`; 0 if none. */
 int firstLineNotUtf8(const std::string& text) {
     int line = 1;
     for (std::size_t i = 0; i < text.size();) {
         const auto c = static_cast<unsigned char>(text[i]);
-        const int more = c < 0x80           ? 0
-                         : (c >> 5) == 0x6  ? 1
-                         : (c >> 4) == 0xe  ? 2
-                         : (c >> 3) == 0x1e ? 3
-                                            : -1;
-        if (more < 0 || i + more >= text.size() + (more == 0 ? 1 : 0))
+        unsigned char low = 0, high = 0;
+        const int more = utf8Continuations(c, low, high);
+        if (more < 0 || text.size() - i <= static_cast<std::size_t>(more))
             return line;
-        for (int k = 1; k <= more; ++k)
-            if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2)
+        for (int k = 1; k <= more; ++k) {
+            const auto b = static_cast<unsigned char>(text[i + k]);
+            if (b < (k == 1 ? low : 0x80) || b > (k == 1 ? high : 0xbf))
                 return line;
+        }
         line += c == '\n';
-        i += 1 + more;
+        i += 1 + static_cast<std::size_t>(more);
     }
     return 0;
 }
