@@ -80,7 +80,8 @@ namespace {
 /** summary.json of a run in the crossing hall, where a walker passes through start 0. */
 std::string crossingRun(const std::string& planner, const fs::path& dir) {
     return summaryWith("--set experiment.world=crossing.yaml --set experiment.planner=" + planner +
-                           " --set experiment.planning_fixed_s=10 --set experiment.max_time_s=40",
+                           " --set experiment.planning_fixed_s=10 --set planning.deadline_s=10"
+                           " --set experiment.max_time_s=40",
                        dir);
 }
 

@@ -180,6 +180,13 @@ std::vector<BadInputCase> badInputCases() {
     cases.push_back(
         {"start_out_of_range", kTinyIni + " --set experiment.start=9", {"start", "0..4"}});
     cases.push_back({"missing_file", "/nonexistent/exp.ini", {"/nonexistent/exp.ini"}});
+    cases.push_back(
+        {"fixed_plans_beyond_deadline",
+         kTinyIni + " --set experiment.planning_fixed_s=2 --set planning.deadline_s=1.5",
+         {"[planning] deadline_s", "planning_fixed_s", "every plan would miss it"}});
+    cases.push_back({"no_deadline",
+                     kTinyIni + " --set planning.deadline_s=0",
+                     {"[planning] deadline_s", "must be > 0"}});
     {
         const std::string ini =
             writeIni("missing_key",

@@ -349,8 +349,10 @@ struct Mission::Impl {
      * safe against what the frames taken meanwhile predict, its times counted from now.
      */
     std::optional<planning::Plan> planOnce() {
-        const planning::PlanningContext ctx = context();
+        planning::PlanningContext ctx = context();
         const auto t0 = Clock::now();
+        if (settings.planningTime == "measured")  // wall time: never where runs must repeat
+            ctx.deadline = planning::PlanningDeadline::in(settings.planningDeadline);
         planning::Plan plan = planner->plan(ctx);
         const double wall = secondsSince(t0);
         if (!plan.tree.empty())

@@ -53,6 +53,16 @@ Settings loadSettings(const ExperimentConfig& experiment) {
                          ": [experiment] timeseries_every_s: must be > 0");
     s.progressEvery = r.requireDouble("progress_every_s");
     s.maxFailedPlans = r.requireInt("max_failed_plans");
+    const ConfigReader planning(experiment.config(), "planning", experiment.source());
+    s.planningDeadline = planning.requireDouble("deadline_s");
+    if (!(s.planningDeadline > 0))
+        throw InputError(planning.where("deadline_s") + ": [planning] deadline_s: must be > 0");
+    if (s.planningTime == "fixed" && s.planningFixed > s.planningDeadline)
+        throw InputError(planning.where("deadline_s") +
+                         ": [planning] deadline_s: " + planning.requireString("deadline_s") +
+                         " s is below [experiment] planning_fixed_s (" +
+                         r.requireString("planning_fixed_s") +
+                         " s): with planning_time = fixed every plan would miss it");
     return s;
 }
 

@@ -9,12 +9,13 @@ namespace daep::mission {
 
 class ExperimentConfig;
 
-/** The [experiment] section, validated. */
+/** The [experiment] section (and [planning] deadline_s), validated. */
 struct Settings {
     std::string worldName, mode, plannerName, planningTime;
     int start = 0;
     std::uint64_t seed = 0;
     double maxTime = 0, planningFixed = 0, climb = 0, sampleEvery = 0, progressEvery = 0;
+    double planningDeadline = 0;  ///< [planning] deadline_s: wall-clock budget of a plan call
     int maxFailedPlans = 0;
 };
 

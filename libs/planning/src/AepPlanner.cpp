@@ -266,7 +266,7 @@ void AepPlanner::reinsertPreviousBranch(const PlanningContext& context) {
 void AepPlanner::growLocal(const PlanningContext& context) {
     best_ = tree_.bestByScore();
     auto goodEnough = [&] { return best_ >= 0 && tree_.node(best_).score > params_.zeroGain; };
-    while (stats_.samples < params_.maxSamples &&
+    while (stats_.samples < params_.maxSamples && !context.deadline.passed() &&
            (tree_.size() - 1 < params_.initialIterations ||
             (!goodEnough() && tree_.size() - 1 < params_.cutoffIterations))) {
         ++stats_.samples;
@@ -318,7 +318,24 @@ Plan AepPlanner::plan(const PlanningContext& context) {
         globalFailures_ = 0;
         return localPlan(context);
     }
+    if (context.deadline.passed())
+        return planAtDeadline(context);
     return globalPlan(context, best_ >= 0 ? tree_.node(best_).score : 0.0);
+}
+
+Plan AepPlanner::planAtDeadline(const PlanningContext& context) {
+    if (best_ > 0 && tree_.node(best_).score > 0.0) {
+        Plan plan = localPlan(context);
+        plan.reason = "deadline: " + plan.reason;
+        return plan;
+    }
+    previousBranch_.clear();
+    Plan plan;
+    plan.status = Plan::Status::Path;
+    plan.tree = tree_.edges();
+    plan.reason =
+        "deadline: no branch with gain after " + std::to_string(tree_.size() - 1) + " nodes";
+    return plan;
 }
 
 bool AepPlanner::verifyFrontier(const mapping::ExplorationMap& map, int id) {
@@ -342,7 +359,7 @@ bool AepPlanner::growGlobal(const PlanningContext& context, const std::vector<in
     bool reached = false;
     std::set<int> verified;  // cached gains may be stale far from where the drone flew
     while (stats_.samples < params_.globalMaxSamples && tree_.size() - 1 < params_.globalMaxNodes &&
-           !(reached && tree_.size() - 1 >= params_.globalMinNodes)) {
+           !(reached && tree_.size() - 1 >= params_.globalMinNodes) && !context.deadline.passed()) {
         ++stats_.samples;
         const bool towardsGoal = !frontiers.empty() && unit(rng_) < params_.globalGoalBias;
         const Eigen::Vector3d sample = towardsGoal ? cache_.entry(frontiers[pick(rng_)]).position
@@ -420,6 +437,12 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
             << cache_.size() << " frontiers, " << tree_.size() - 1 << " nodes";
         out.reason = why.str();
         return out;
+    }
+    if (context.deadline.passed()) {  // cut short: no judgement on the frontiers
+        plan.status = Plan::Status::Path;
+        why << "deadline: global tree cut at " << tree_.size() - 1 << " nodes, no path yet";
+        plan.reason = why.str();
+        return plan;
     }
     if (peopleBlockFrontiers(context)) {
         plan.status = Plan::Status::Path;

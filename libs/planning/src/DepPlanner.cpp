@@ -244,6 +244,8 @@ int DepPlanner::grow(const PlanningContext& context) {
     }
     int added = 0;
     for (int s = 0; s < params_.samplesPerPlan && added < params_.maxNewNodes; ++s) {
+        if (context.deadline.passed())
+            return added;  // cut short: says nothing about what is left to explore
         if (tryAddSample(*context.map, sampleInBox(box, rng_)))
             ++added;
     }
@@ -424,8 +426,8 @@ Plan DepPlanner::plan(const PlanningContext& context) {
     lastNewNodes_ += grow(context);
     const Choice choice = choose(context, start);
     noCandidateLast_ = choice.goal < 0;
-    const bool idle =
-        (choice.goal < 0 || choice.unreachable) && lastNewNodes_ < params_.finishMinNodes;
+    const bool idle = (choice.goal < 0 || choice.unreachable) &&
+                      lastNewNodes_ < params_.finishMinNodes && !context.deadline.passed();
     idlePlans_ = idle ? idlePlans_ + 1 : 0;
     std::ostringstream why;
     why << roadmap_.size() << " nodes (+" << lastNewNodes_ << "), " << lastRefreshed_

@@ -60,7 +60,7 @@ bool RhNbvpPlanner::goodEnough() const {
 
 void RhNbvpPlanner::grow(const PlanningContext& context) {
     while (tree_.size() - 1 < params_.cutoffIterations && samples_ < params_.maxSamples &&
-           !goodEnough()) {
+           !goodEnough() && !context.deadline.passed()) {
         ++samples_;
         const Eigen::Vector3d sample = sampleInBox(samplingBox_, rng_);
         const double yaw = sampleYaw(rng_);

@@ -150,6 +150,11 @@ private:
     void growLocal(const PlanningContext& context);
     void resetTree(const PlanningContext& context);
     Plan localPlan(const PlanningContext& context);
+    /**
+     * When the deadline passed during the local growth: the best branch grown so far if it
+     * has any gain, else no path (neither counts as a failed global plan).
+     */
+    Plan planAtDeadline(const PlanningContext& context);
     Plan globalPlan(const PlanningContext& context, double localScore);
     /** Re-casts a cached viewpoint; drops it (false) when its gain fell to the threshold. */
     bool verifyFrontier(const mapping::ExplorationMap& map, int id);

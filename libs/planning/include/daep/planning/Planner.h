@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -58,6 +59,22 @@ struct Plan {
     std::vector<TreeEdge> tree;
 };
 
+/**
+ * When a plan call must return (anytime planning): trees stop growing once it has passed and
+ * the planner hands out the best it has, or no path. Wall-clock time, so runs that must be
+ * reproducible (planning_time = fixed) leave it unset: it never passes.
+ */
+struct PlanningDeadline {
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point at = Clock::time_point::max();
+
+    static PlanningDeadline in(double seconds) {
+        return {Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(seconds))};
+    }
+    bool passed() const { return at != Clock::time_point::max() && Clock::now() >= at; }
+};
+
 /** What a planner may look at when it plans. */
 struct PlanningContext {
     double time = 0.0;  ///< simulated time now
@@ -71,6 +88,7 @@ struct PlanningContext {
     bool peopleFromCamera = false;
     Eigen::Vector3d droneSize{0.4, 0.4, 0.1};
     Eigen::Vector3d personSize{1.0, 1.0, 1.8};
+    PlanningDeadline deadline;
 };
 
 /** One interface for RH-NBVP, AEP, DEP and DAEP. */
