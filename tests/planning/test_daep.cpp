@@ -523,32 +523,26 @@ TEST_F(CornerRoom, CorneredByAWalkerNoEscapeKeepsClearOfThem) {
 TEST_F(CornerRoom, TheCornerIsATrapOnlyWhileSomeoneCanWalkUpToItInTime) {
     DaepPlanner planner = makePlanner(3);
     PlanningContext ctx = contextFor(*map, middle);
-    const std::vector<PersonForecast> nobody;
-    ctx.people = &nobody;
-    planner.plan(ctx);
-    EXPECT_FALSE(planner.isTrap(ctx, corner, ctx.time + 5));
+    const auto trapWith = [&](DaepPlanner& p, std::vector<PersonForecast> people,
+                              const Eigen::Vector3d& stop, double arrival) {
+        ctx.people = &people;
+        p.plan(ctx);
+        return p.isTrap(ctx, stop, ctx.time + arrival);
+    };
+    const double t = ctx.time;
+    EXPECT_FALSE(trapWith(planner, {}, corner, 5));
     // Standing in the far corner: 6.6 m away, more than trap_horizon_s at walking speed.
-    const std::vector<PersonForecast> far{walker(0, {5.4, 5.4}, {0, 0}, ctx.time)};
-    ctx.people = &far;
-    planner.plan(ctx);
-    EXPECT_FALSE(planner.isTrap(ctx, corner, ctx.time + 5));
+    EXPECT_FALSE(trapWith(planner, {walker(0, {5.4, 5.4}, {0, 0}, t)}, corner, 5));
     // Standing 2.1 m away: they could be at the drone in 3 s.
-    const std::vector<PersonForecast> near{walker(0, {2.2, 2.2}, {0, 0}, ctx.time)};
-    ctx.people = &near;
-    planner.plan(ctx);
-    EXPECT_TRUE(planner.isTrap(ctx, corner, ctx.time + 5));
+    const PersonForecast near = walker(0, {2.2, 2.2}, {0, 0}, t);
+    EXPECT_TRUE(trapWith(planner, {near}, corner, 5));
     // Walking away, they are out of reach by the time the drone arrives.
-    const std::vector<PersonForecast> leaving{walker(0, {2.2, 2.2}, {0.3, 0.3}, ctx.time)};
-    ctx.people = &leaving;
-    planner.plan(ctx);
-    EXPECT_FALSE(planner.isTrap(ctx, corner, ctx.time + 15));
+    EXPECT_FALSE(trapWith(planner, {walker(0, {2.2, 2.2}, {0.3, 0.3}, t)}, corner, 15));
     // A wall alone is no trap: along it the drone gets out of their way.
-    EXPECT_FALSE(planner.isTrap(ctx, {3.0, 0.7, 1.0}, ctx.time + 5)) << "south wall";
+    EXPECT_FALSE(trapWith(planner, {near}, {3.0, 0.7, 1.0}, 5)) << "south wall";
     // Switched off.
-    ctx.people = &near;
     DaepPlanner unguarded = makePlanner(3, "trap_horizon_s", "0");
-    unguarded.plan(ctx);
-    EXPECT_FALSE(unguarded.isTrap(ctx, corner, ctx.time + 5));
+    EXPECT_FALSE(trapWith(unguarded, {near}, corner, 5));
 }
 
 TEST_F(CornerRoom, APlanIntoTheCornerWhileSomeoneIsNearStopsShortOfIt) {
