@@ -1,6 +1,7 @@
 // End-to-end: DAEP flown by the real daep-explore binary through the tiny room's walker.
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 
 #include "RunApp.h"
@@ -98,4 +99,33 @@ TEST(DaepLongPlans, AHoverThatBecomesUnsafeWhilePlanningIsEvadedBeforeThePlanEnd
     const std::string aep = crossingRun("aep", dir / "aep");
     EXPECT_GE(jsonNumber(aep, "collisions"), 1.0) << aep;
     EXPECT_EQ(jsonNumber(aep, "hover_evasions"), 0.0) << aep;
+}
+
+TEST(DaepDeadline, PlansCutByTheDeadlineKeepTheMissionGoingSafely) {
+    // A deadline no plan can meet with measured planning time: every plan call is cut before
+    // its trees grow, so the drone only turns on the spot looking around, and a cut plan
+    // never ends the mission (a cut global tree judges no frontier unreachable).
+    const auto dir = freshDir("daep_deadline");
+    const std::string summary = summaryWith(
+        "--set experiment.planner=daep --set experiment.planning_time=measured"
+        " --set planning.deadline_s=0.000001 --set experiment.max_time_s=20",
+        dir / "run");
+    EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0) << summary;
+    EXPECT_EQ(jsonNumber(summary, "static_collisions"), 0.0) << summary;
+    EXPECT_NE(summary.find("\"end_reason\": \"time limit\""), std::string::npos) << summary;
+    std::istringstream plans(readText(dir / "run" / "plans.csv"));
+    std::string line;
+    std::getline(plans, line);  // header
+    int rows = 0, escapes = 0;
+    while (std::getline(plans, line)) {
+        ++rows;
+        const bool escape = line.find("evasion: ") != std::string::npos;  // hovering unsafe
+        escapes += escape;
+        EXPECT_TRUE(escape || line.find("deadline: ") != std::string::npos) << line;
+    }
+    // It moves only to escape the walker (escapes are at most 1.6 m).
+    EXPECT_LE(jsonNumber(summary, "path_length_m"),
+              1.7 * (escapes + jsonNumber(summary, "hover_evasions")) + 0.01)
+        << summary;
+    EXPECT_GE(rows, 5);
 }
