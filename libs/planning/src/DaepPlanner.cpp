@@ -380,16 +380,13 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
 
 namespace {
 
-/**
- * Distance from p to the straight walk of someone at q who heads for `stop` and walks on past
- * it (the half-line from q through stop), in the plane.
- */
-double distanceToWalk(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
-                      const Eigen::Vector2d& stop) {
-    const Eigen::Vector2d heading = stop - q;
-    const double length2 = heading.squaredNorm();
-    const double s = length2 > 0.0 ? std::max(0.0, (p - q).dot(heading) / length2) : 0.0;
-    return (q + s * heading - p).norm();
+/** Distance from p to the segment a-b, in the plane. */
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
+    const Eigen::Vector2d ab = b - a;
+    const double length2 = ab.squaredNorm();
+    const double s = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    return (a + s * ab - p).norm();
 }
 
 }  // namespace
@@ -410,14 +407,13 @@ bool DaepPlanner::isTrap(const PlanningContext& context, const Eigen::Vector3d& 
             walkers.push_back(q);
     }
     // Each needs an escape out of their way: a goal farther than the keep-out from their
-    // straight walk through the stop (fleeing ahead of them along it is no escape: the
-    // escapes are short, and they walk on).
+    // straight walk to the stop.
     std::vector<bool> escaped(walkers.size(), false);
     std::size_t left = walkers.size();
     if (left > 0)
         forEachEscapeGoal(context, stop, [&](const Eigen::Vector3d& to, double, double) {
             for (std::size_t i = 0; i < walkers.size(); ++i)
-                if (!escaped[i] && distanceToWalk(to.head<2>(), walkers[i], at) > keepOut) {
+                if (!escaped[i] && distanceToSegment(to.head<2>(), walkers[i], at) > keepOut) {
                     escaped[i] = true;
                     --left;
                 }

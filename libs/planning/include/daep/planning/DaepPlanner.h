@@ -103,7 +103,7 @@ public:
      * up to it within trap_horizon_s (from where they are predicted then, at the larger of
      * their speed and blind_walk_speed, straight at it), and no escape move from the stop
      * (the short moves escape() picks from, free of static obstacles) ends farther than the
-     * keep-out from that straight walk, continued past the stop.
+     * keep-out from that straight walk.
      */
     bool isTrap(const PlanningContext& context, const Eigen::Vector3d& stop, double arrival) const;
     /** The plan up to its first stop that is a trap (every waypoint is a stop: a turn). */
