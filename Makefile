@@ -17,8 +17,10 @@ endif
 # Sanitizer + fuzz build: clang, ASan + UBSan on our code, libFuzzer coverage on the libraries.
 SAN_BUILD_DIR ?= build-san
 SAN_CXX ?= clang++-14
+# SANITIZE=undefined (with another SAN_BUILD_DIR) fuzzes about 3 x faster, for long runs.
+SANITIZE ?= address,undefined
 SAN_CMAKE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=$(SAN_CXX) \
-	-DDAEP_SANITIZE=address,undefined -DDAEP_FUZZ=ON
+	-DDAEP_SANITIZE=$(SANITIZE) -DDAEP_FUZZ=ON
 ifneq ($(shell command -v ccache 2>/dev/null),)
 SAN_CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 endif

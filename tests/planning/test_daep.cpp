@@ -455,6 +455,11 @@ TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
  * The Exhibition corner: a 6 x 6 m room, all of it seen, and a person walking at 0.35 m/s
  * straight at a drone that stopped in its south-west corner.
  */
+/** DAEP with the trap check on (trap_horizon_s = 5; off by default). */
+DaepPlanner trapGuarded() {
+    return makePlanner(3, "trap_horizon_s", "5");
+}
+
 struct CornerRoom : ::testing::Test {
     void SetUp() override {
         map = test::makeMap(test::box(0, 0, 0, 6, 6, 2), 10.0);
@@ -504,7 +509,7 @@ TEST_F(CornerRoom, CorneredByAWalkerNoEscapeKeepsClearOfThem) {
     // The situation that ended in collisions: every escape from the corner runs along a wall,
     // within reach of the person coming in; in the open the same walker is easily escaped.
     for (const bool cornered : {true, false}) {
-        DaepPlanner planner = makePlanner(3);
+        DaepPlanner planner = trapGuarded();
         const Eigen::Vector3d at = cornered ? corner : middle;
         PlanningContext ctx = contextFor(*map, at, M_PI / 4);  // facing them
         const std::vector<PersonForecast> people = walkerComingAt(at, ctx.time);
@@ -521,7 +526,7 @@ TEST_F(CornerRoom, CorneredByAWalkerNoEscapeKeepsClearOfThem) {
 }
 
 TEST_F(CornerRoom, TheCornerIsATrapOnlyWhileSomeoneCanWalkUpToItInTime) {
-    DaepPlanner planner = makePlanner(3);
+    DaepPlanner planner = trapGuarded();
     PlanningContext ctx = contextFor(*map, middle);
     const auto trapWith = [&](DaepPlanner& p, std::vector<PersonForecast> people,
                               const Eigen::Vector3d& stop, double arrival) {
@@ -546,7 +551,7 @@ TEST_F(CornerRoom, TheCornerIsATrapOnlyWhileSomeoneCanWalkUpToItInTime) {
 }
 
 TEST_F(CornerRoom, APlanIntoTheCornerWhileSomeoneIsNearStopsShortOfIt) {
-    DaepPlanner planner = makePlanner(3);
+    DaepPlanner planner = trapGuarded();
     PlanningContext ctx = contextFor(*map, middle);
     const std::vector<PersonForecast> near{walker(0, {2.2, 2.2}, {0, 0}, ctx.time)};
     ctx.people = &near;

@@ -30,7 +30,7 @@ struct DaepParams {
      * No trap: a stop that a person could walk up to within this time (s) of the drone's
      * arrival needs an escape out of their way; 0 switches the check off.
      */
-    double trapHorizon = 5.0;
+    double trapHorizon = 0.0;
     /**
      * Turn to the direction of travel, fly, then turn to the view, so that the camera sees
      * who is in the way: always, never (AEP's turn to the view, then fly), or auto (when the
