@@ -16,7 +16,7 @@ struct DeadlineRoom : test::HalfKnownRoomMap {
         ctx.people = &nobody;
         return ctx;
     }
-    const std::vector<perception::PersonForecast> nobody;
+    const std::vector<perception::PersonForecast> nobody{};
 };
 
 TEST_F(DeadlineRoom, UnsetItNeverPasses) {
