@@ -4,6 +4,7 @@
 #include <random>
 
 #include "MapTestUtils.h"
+#include "daep/common/Geometry.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::mapping {
@@ -171,14 +172,6 @@ protected:
     ExplorationMap map_;
 };
 
-double pointSegmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                            const Eigen::Vector3d& b) {
-    const Eigen::Vector3d d = b - a;
-    const double len2 = d.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * d - p).norm();
-}
-
 /**
  * Segment-to-cell-box distance by ternary search: the distance from a point moving along a
  * segment to a convex box is convex in the segment parameter.
@@ -215,10 +208,10 @@ Blockers bruteForce(const ExplorationMap& map, const Eigen::Vector3d& a, const E
             for (int x = -8; x < 40; ++x) {
                 const Eigen::Vector3d c = cellCentre({x, y, z}, kRes);
                 if (!blocks(map.state(c)) ||
-                    pointSegmentDistance(c, a, b) > r + 0.5 * std::sqrt(3.0) * kRes) {
+                    distanceToSegment(c, a, b) > r + 0.5 * std::sqrt(3.0) * kRes) {
                     continue;
                 }
-                out.centreWithinR |= pointSegmentDistance(c, a, b) <= r;
+                out.centreWithinR |= distanceToSegment(c, a, b) <= r;
                 out.boxWithinR |= searchedBoxDistance(c.array() - 0.5 * kRes, a, b) <= r;
             }
         }

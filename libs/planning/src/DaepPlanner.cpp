@@ -9,6 +9,7 @@
 
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
+#include "daep/common/Geometry.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::planning {
@@ -378,19 +379,6 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
     }
 }
 
-namespace {
-
-/** Distance from p to the segment a-b, in the plane. */
-double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
-    const Eigen::Vector2d ab = b - a;
-    const double length2 = ab.squaredNorm();
-    const double s = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-    return (a + s * ab - p).norm();
-}
-
-}  // namespace
-
 bool DaepPlanner::isTrap(const PlanningContext& context, const Eigen::Vector3d& stop,
                          double arrival) const {
     if (obstacles_.empty() || params_.trapHorizon <= 0.0)
@@ -413,7 +401,8 @@ bool DaepPlanner::isTrap(const PlanningContext& context, const Eigen::Vector3d& 
     if (left > 0)
         forEachEscapeGoal(context, stop, [&](const Eigen::Vector3d& to, double, double) {
             for (std::size_t i = 0; i < walkers.size(); ++i)
-                if (!escaped[i] && distanceToSegment(to.head<2>(), walkers[i], at) > keepOut) {
+                if (!escaped[i] &&
+                    distanceToSegment<Eigen::Vector2d>(to.head<2>(), walkers[i], at) > keepOut) {
                     escaped[i] = true;
                     --left;
                 }
