@@ -2,6 +2,9 @@
 // plain or gzip'ed), read to the end as a rawlog replay does.
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
+#include <malloc.h>
+
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <new>
@@ -17,18 +20,28 @@
 // throw std::bad_alloc (the reader turns it into an InputError), so fuzzing goes on to our code.
 constexpr std::size_t kAllocationBudget = std::size_t(64) << 20;
 bool readingInput = false;
-std::size_t allocatedForInput = 0;
+/**
+ * Bytes allocated while reading the input and not freed yet. Counting what is live, not all
+ * that was ever allocated, keeps a long but sane input from running out of budget at an
+ * arbitrary allocation (such as inside MRPT's exception text, where a throw terminates).
+ */
+std::size_t liveForInput = 0;
 
 // Every unaligned form is replaced, so that each allocation is freed by its own kind.
 void* boundedAllocation(std::size_t size) noexcept {
-    if (readingInput) {
-        if (size > kAllocationBudget - allocatedForInput) {
-            readingInput = false;  // one refusal unwinds MRPT; the error message may allocate
-            return nullptr;
-        }
-        allocatedForInput += size;
+    if (readingInput && size > kAllocationBudget - liveForInput) {
+        readingInput = false;  // one refusal unwinds MRPT; the error message may allocate
+        return nullptr;
     }
-    return std::malloc(size == 0 ? 1 : size);
+    void* p = std::malloc(size == 0 ? 1 : size);
+    if (p != nullptr && readingInput)
+        liveForInput += malloc_usable_size(p);
+    return p;
+}
+void release(void* p) noexcept {
+    if (p != nullptr && readingInput)
+        liveForInput -= std::min(liveForInput, malloc_usable_size(p));
+    std::free(p);
 }
 void* throwingAllocation(std::size_t size) {
     if (void* p = boundedAllocation(size))
@@ -49,22 +62,22 @@ void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
     return boundedAllocation(size);
 }
 void operator delete(void* p) noexcept {
-    std::free(p);
+    release(p);
 }
 void operator delete[](void* p) noexcept {
-    std::free(p);
+    release(p);
 }
 void operator delete(void* p, std::size_t) noexcept {
-    std::free(p);
+    release(p);
 }
 void operator delete[](void* p, std::size_t) noexcept {
-    std::free(p);
+    release(p);
 }
 void operator delete(void* p, const std::nothrow_t&) noexcept {
-    std::free(p);
+    release(p);
 }
 void operator delete[](void* p, const std::nothrow_t&) noexcept {
-    std::free(p);
+    release(p);
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -73,7 +86,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // MRPT's aligned blocks (images, point vectors) the reader refuses past the same budget.
     daep::mission::RawlogReader::setLargestReadBlock(kAllocationBudget);
     readingInput = true;
-    allocatedForInput = 0;
+    liveForInput = 0;
     daep::fuzz::expectOnlyInputErrors([&] {
         daep::mission::RawlogReader reader(path, "", "DRONE_POSE");
         daep::mission::RawlogFrame frame;
