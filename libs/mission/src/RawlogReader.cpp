@@ -2,11 +2,9 @@
 
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZInputStream.h>
-#include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/obs/CRawlog.h>
-#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <atomic>
@@ -20,6 +18,7 @@
 #include <new>
 #include <utility>
 
+#include "RawlogObjects.h"
 #include "daep/common/Error.h"
 
 namespace daep::mission {
@@ -107,10 +106,7 @@ std::string oneLineReason(const std::exception& e) {
     what = what.substr(0, what.find('\n'));
     if (const auto hint = what.find(" (Perhaps it's a gz"); hint != std::string::npos)
         what.resize(hint);
-    std::string out;
-    for (const char c : what)
-        out += (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) ? '?'
-                                                                                              : c;
+    std::string out = printable(what);
     const auto b = out.find_first_not_of(' ');
     out = b == std::string::npos ? std::string() : out.substr(b);
     if (out.size() > 200)
@@ -150,6 +146,7 @@ bool finitePose(const mrpt::poses::CPose3D& p) {
 struct RawlogReader::Impl {
     std::string path, sensorLabel, poseLabel;
     mrpt::io::CFileGZInputStream in;
+    RawlogObjects objectStream{in};
     std::size_t objects = 0;
     std::deque<ObservationPtr> queue;  ///< read but not yet handled (sensory frame contents)
     std::shared_ptr<mrpt::obs::CObservation3DRangeScan> pending;
@@ -168,41 +165,44 @@ struct RawlogReader::Impl {
                " depth frames)";
     }
 
-    /** The next serialized object, or nullptr at a clean end of file. */
-    mrpt::serialization::CSerializable::Ptr readObject() {
-        const auto before = in.getPosition();
-        mrpt::serialization::CSerializable::Ptr obj;
+    /** Queues the observations of the next object; false at a clean end of the file. */
+    bool readObject() {
+        std::vector<ObservationPtr> observations;
         try {
             const ReadingObject reading;
-            mrpt::serialization::archiveFrom(in) >> obj;
+            if (!objectStream.readNext(observations))
+                return false;
+        } catch (const TruncatedObject&) {
+            failTruncated();
+        } catch (const MalformedObject& e) {
+            fail(unreadable() + where(objects + 1) + " " + e.what());
         } catch (const mrpt::serialization::CExceptionEOF&) {
-            if (in.getPosition() != before)
-                fail("truncated rawlog: the file ends inside " + where(objects + 1));
-            return nullptr;
+            failTruncated();
         } catch (const std::bad_alloc&) {
             fail("corrupt rawlog: " + where(objects + 1) + " declares more data than memory holds");
         } catch (const std::exception& e) {
             if (isEndOfData(oneLineReason(e)) || in.checkEOF())
-                fail("truncated rawlog: the file ends inside " + where(objects + 1));
-            fail((objects == 0 ? "not an MRPT rawlog: " : "corrupt rawlog: ") + where(objects + 1) +
-                 " is unreadable: " + reportedReason(e));
+                failTruncated();
+            fail(unreadable() + where(objects + 1) + " is unreadable: " + reportedReason(e));
         }
         ++objects;
-        return obj;
+        queue.insert(queue.end(), observations.begin(), observations.end());
+        return true;
+    }
+
+    [[noreturn]] void failTruncated() const {
+        fail("truncated rawlog: the file ends inside " + where(objects + 1));
+    }
+
+    std::string unreadable() const {
+        return objects == 0 ? "not an MRPT rawlog: " : "corrupt rawlog: ";
     }
 
     /** The next observation in file order, or nullptr at the end. */
     ObservationPtr nextObservation() {
-        while (queue.empty()) {
-            const auto obj = readObject();
-            if (!obj)
+        while (queue.empty())
+            if (!readObject())
                 return nullptr;
-            if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
-                queue.insert(queue.end(), sf->begin(), sf->end());
-            else if (auto o = std::dynamic_pointer_cast<mrpt::obs::CObservation>(obj))
-                queue.push_back(o);
-            // anything else (CActionCollection: odometry) carries no depth or pose
-        }
         ObservationPtr o = queue.front();
         queue.pop_front();
         return o;

@@ -29,8 +29,9 @@ struct RawlogFrame {
 /**
  * Streams the depth frames of an MRPT rawlog (observations format, or actions / sensory-frames
  * format: observations inside CSensoryFrame are taken in order, CActionCollection is skipped),
- * one serialized object at a time. A depth frame is a CObservation3DRangeScan with a range
- * image (and the given sensor label, if one is given). Its robot pose is the latest
+ * one serialized object at a time; an object of any other class, or a container element of the
+ * wrong class, is a corrupt rawlog (see RawlogObjects). A depth frame is a CObservation3DRangeScan
+ * with a range image (and the given sensor label, if one is given). Its robot pose is the latest
  * CObservationRobotPose labelled poseLabel whose timestamp is at or before the frame's: pose
  * observations recorded just after the frame with the same timestamp (our simulator writes
  * the frame, then the pose) still pair with it; so do the people's PERSON_<i> poses. Errors are
