@@ -31,9 +31,7 @@ export UBSAN_OPTIONS ?= halt_on_error=1:print_stacktrace=1:$(SAN_SYMBOLIZER)
 export LSAN_OPTIONS ?= suppressions=$(CURDIR)/tests/sanitizer/lsan.supp:print_suppressions=0
 FUZZ_SECONDS ?= 60
 FUZZ_RUNS ?= 1000000
-# rawlog is left out until MRPT's null-CAction crash is handled (tests/fuzz/upstream/README.md);
-# its corpus and regressions are still replayed by ctest in every build.
-FUZZ_SHORT_TARGETS ?= experiment_ini benchmark_config world_file gazebo_import eth_ucy
+FUZZ_SHORT_TARGETS ?= experiment_ini benchmark_config world_file gazebo_import eth_ucy rawlog
 
 .PHONY: all deps configure build demo test bench install format clean
 .PHONY: sanitize-build sanitize fuzz-short fuzz

@@ -14,7 +14,8 @@
 
 // MRPT 2.5's deserializer trusts the sizes and counts in the file: a few corrupt bytes make it
 // allocate (and zero) up to 4 GB for one string, or billions of elements for a
-// CActionCollection, before it meets the end of the file (both found by this target). ASan's
+// CActionCollection (now unpacked by our reader), before it meets the end of the file (both
+// found by this target). ASan's
 // operator new aborts instead of throwing, and a release build may exhaust memory. Here, while
 // an input is read, allocations beyond a budget far above what a fuzz input's objects need
 // throw std::bad_alloc (the reader turns it into an InputError), so fuzzing goes on to our code.
