@@ -74,7 +74,7 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
         throw InputError(err.str());
     }
     cells.assign(std::size_t(total), std::uint8_t(CellState::Unknown));
-    everHit.assign(std::size_t(total), 0);
+    flags.assign(std::size_t(total), 0);
 }
 
 bool ExplorationMap::Impl::axisKeyOf(double c, octomap::key_type& k) const {
@@ -106,41 +106,93 @@ bool ExplorationMap::Impl::keyInBox(const octomap::OcTreeKey& key) const {
     return true;
 }
 
-std::size_t ExplorationMap::Impl::integrate(const octomap::point3d& origin, double maxRange) {
-    freeKeys.clear();
-    occupiedKeys.clear();
-    tree.computeDiscreteUpdate(cloud, origin, freeKeys, occupiedKeys, maxRange);
-    for (const octomap::OcTreeKey& key : personKeys) {
-        if (tree.computeRayKeys(origin, tree.keyToCoord(key), ray))
-            freeKeys.insert(ray.begin(), ray.end());
+bool ExplorationMap::Impl::mark(const octomap::OcTreeKey& key, std::uint8_t m) {
+    const std::int64_t i = gridIndex(key);
+    if (i < 0) {
+        octomap::KeySet& outside = m == kFreeNow       ? freeOutside
+                                   : m == kOccupiedNow ? occupiedOutside
+                                                       : endsOutside;
+        return outside.insert(key).second;
     }
+    std::uint8_t& f = flags[std::size_t(i)];
+    if (f & m)
+        return false;
+    if (!(f & kFrameMarks))
+        marked.push_back(i);
+    f |= m;
+    return true;
+}
+
+void ExplorationMap::Impl::markRay(const octomap::point3d& origin, const octomap::point3d& end) {
+    if (tree.computeRayKeys(origin, end, ray))
+        for (const octomap::OcTreeKey& key : ray)
+            mark(key, kFreeNow);
+}
+
+bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) {
+    const std::int64_t i = gridIndex(key);
+    // OctoMap leaves a clamped cell as it is (after a search of the tree); the flag says so
+    // without the search.
+    if (i >= 0 && (flags[std::size_t(i)] & (hit ? kClampedOccupied : kClampedFree)))
+        return false;
+    // Not lazy: updateInnerOccupancy() after each frame walks the whole tree (about 30 ms at
+    // 2e6 leaves); eager updates cost O(frame) and keep the tree pruned. The returned node is
+    // the leaf or the pruned ancestor now holding the cell's value.
+    const octomap::OcTreeNode* node = tree.updateNode(key, hit, false);
+    if (i < 0)
+        return false;
+    std::uint8_t& cell = cells[std::size_t(i)];
+    const bool newlyKnown = cell == std::uint8_t(CellState::Unknown) && keyInBox(key);
+    cell = std::uint8_t(tree.isNodeOccupied(node) ? CellState::Occupied : CellState::Free);
+    std::uint8_t& f = flags[std::size_t(i)];
+    f &= std::uint8_t(~(kClampedFree | kClampedOccupied));
+    if (node->getLogOdds() <= tree.getClampingThresMinLog())
+        f |= kClampedFree;
+    else if (node->getLogOdds() >= tree.getClampingThresMaxLog())
+        f |= kClampedOccupied;
+    f |= std::uint8_t(hit ? kEverHit : 0);
+    return newlyKnown;
+}
+
+/**
+ * OctoMap's discrete update (each end point reduced to its cell's centre once; a ray cleared up
+ * to it, or up to maxRange, and its cell marked occupied if within range; occupied wins over
+ * free), with the frame's cells deduplicated by marks on the dense grid instead of hash sets.
+ * Every cell is updated once per frame, so the order of updates does not change the tree.
+ */
+std::size_t ExplorationMap::Impl::integrate(const octomap::point3d& origin, double maxRange) {
+    for (const octomap::point3d& point : cloud) {
+        octomap::OcTreeKey key;
+        if (!tree.coordToKeyChecked(point, key) || !mark(key, kEndNow))
+            continue;
+        const octomap::point3d end = tree.keyToCoord(key);
+        if ((end - origin).norm() <= maxRange) {
+            markRay(origin, end);
+            mark(key, kOccupiedNow);
+        } else {
+            markRay(origin, origin + (end - origin).normalized() * maxRange);
+        }
+    }
+    for (const octomap::OcTreeKey& key : personKeys)
+        markRay(origin, tree.keyToCoord(key));
     personKeys.clear();
 
     std::size_t newlyKnown = 0;
-    const auto apply = [&](const octomap::OcTreeKey& key, bool hit) {
-        // Not lazy: updateInnerOccupancy() after each frame walks the whole tree (about 30 ms
-        // at 2e6 leaves); eager updates cost O(frame) and keep the tree pruned. The returned
-        // node is the leaf or the pruned ancestor now holding the cell's value.
-        const octomap::OcTreeNode* node = tree.updateNode(key, hit, false);
-        const std::int64_t i = gridIndex(key);
-        if (i < 0) {
-            return;
-        }
-        std::uint8_t& cell = cells[std::size_t(i)];
-        if (cell == std::uint8_t(CellState::Unknown) && keyInBox(key)) {
-            ++newlyKnown;
-        }
-        cell = std::uint8_t(tree.isNodeOccupied(node) ? CellState::Occupied : CellState::Free);
-        everHit[std::size_t(i)] |= std::uint8_t(hit);
-    };
-    for (const auto& key : freeKeys) {
-        if (occupiedKeys.count(key) == 0) {
-            apply(key, false);
-        }
+    for (const std::int64_t i : marked) {
+        std::uint8_t& f = flags[std::size_t(i)];
+        if (f & (kFreeNow | kOccupiedNow))
+            newlyKnown += applyUpdate(keyOfIndex(i), (f & kOccupiedNow) != 0);
+        f &= std::uint8_t(~kFrameMarks);
     }
-    for (const auto& key : occupiedKeys) {
-        apply(key, true);
-    }
+    marked.clear();
+    for (const octomap::OcTreeKey& key : freeOutside)
+        if (occupiedOutside.count(key) == 0)
+            applyUpdate(key, false);
+    for (const octomap::OcTreeKey& key : occupiedOutside)
+        applyUpdate(key, true);
+    freeOutside.clear();
+    occupiedOutside.clear();
+    endsOutside.clear();
     return newlyKnown;
 }
 

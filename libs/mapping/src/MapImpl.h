@@ -22,16 +22,22 @@ struct ExplorationMap::Impl {
     octomap::OcTreeKey gridMin;  ///< key of the grid's first cell on each axis
     std::array<int, 3> dims{};
     std::vector<std::uint8_t> cells;
-    /// Per dense cell, 1 once any frame ended a ray in it (see grazedSurface).
-    std::vector<std::uint8_t> everHit;
+    /// Per dense cell: kEverHit once any frame ended a ray in it (see grazedSurface); whether
+    /// its log-odds sit at a clamping threshold (an update towards it changes nothing); and the
+    /// marks of the frame being integrated.
+    std::vector<std::uint8_t> flags;
+    static constexpr std::uint8_t kEverHit = 1, kFreeNow = 2, kOccupiedNow = 4, kEndNow = 8;
+    static constexpr std::uint8_t kFrameMarks = kFreeNow | kOccupiedNow | kEndNow;
+    static constexpr std::uint8_t kClampedFree = 16, kClampedOccupied = 32;
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
 
     octomap::Pointcloud cloud;   ///< scratch buffers reused between insertions
     octomap::KeySet personKeys;  ///< cells of returns on people: cleared up to, not marked
     octomap::KeyRay ray;
-    octomap::KeySet freeKeys;
-    octomap::KeySet occupiedKeys;
+    std::vector<std::int64_t> marked;  ///< dense cells with frame marks
+    /// The frame's marks on cells outside the dense grid, one set per mark.
+    octomap::KeySet freeOutside, occupiedOutside, endsOutside;
     std::vector<std::uint64_t> rowAbove;  ///< packed keys of the previous image row
 
     /** Key of the cell containing p; false if p is not finite or outside the tree. */
@@ -72,6 +78,14 @@ struct ExplorationMap::Impl {
         return x + std::int64_t(dims[0]) * (y + std::int64_t(dims[1]) * z);
     }
 
+    /** The key of a dense index (the inverse of gridIndex). */
+    octomap::OcTreeKey keyOfIndex(std::int64_t i) const {
+        const std::int64_t plane = std::int64_t(dims[0]) * dims[1];
+        return octomap::OcTreeKey(octomap::key_type(gridMin[0] + i % dims[0]),
+                                  octomap::key_type(gridMin[1] + i % plane / dims[0]),
+                                  octomap::key_type(gridMin[2] + i / plane));
+    }
+
     CellState stateAt(const octomap::OcTreeKey& key) const {
         const std::int64_t i = gridIndex(key);
         return i >= 0 ? CellState(cells[std::size_t(i)]) : treeState(key);
@@ -105,6 +119,12 @@ struct ExplorationMap::Impl {
      * box that went from Unknown to known.
      */
     std::size_t integrate(const octomap::point3d& origin, double maxRange);
+
+    /** Gives a cell a frame mark; false when it had that mark already. */
+    bool mark(const octomap::OcTreeKey& key, std::uint8_t mark);
+    void markRay(const octomap::point3d& origin, const octomap::point3d& end);
+    /** The map update of one marked cell; true when it went from unknown to known in the box. */
+    bool applyUpdate(const octomap::OcTreeKey& key, bool hit);
 };
 
 }  // namespace daep::mapping

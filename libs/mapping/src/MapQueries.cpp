@@ -155,7 +155,8 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
 
 bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key) const {
     const std::int64_t i = gridIndex(key);
-    if (i < 0 || !everHit[std::size_t(i)] || cells[std::size_t(i)] != std::uint8_t(CellState::Free))
+    if (i < 0 || !(flags[std::size_t(i)] & kEverHit) ||
+        cells[std::size_t(i)] != std::uint8_t(CellState::Free))
         return false;
     for (int axis = 0; axis < 3; ++axis) {
         for (const int step : {-1, 1}) {
