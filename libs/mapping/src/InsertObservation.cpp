@@ -5,6 +5,7 @@
 
 #include "DepthPixels.h"
 #include "MapImpl.h"
+#include "PeopleBuckets.h"
 #include "daep/mapping/DepthUnprojection.h"
 
 namespace daep::mapping {
@@ -60,33 +61,23 @@ std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3D
     return points;
 }
 
-/**
- * computeDiscreteUpdate reduces every end point to its voxel anyway, so feeding it one voxel
- * centre per run of neighbouring pixels (same voxel as the pixel to the left or above) gives
- * the same update with far fewer hash-set inserts.
- */
 void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan& obs,
                                        const FlatPose& robot) {
     insertObservation(obs, robot, {});
 }
 
-namespace {
-
-bool onAPerson(const Eigen::Vector3f& p, const std::vector<PersonFootprint>& people) {
-    for (const PersonFootprint& f : people)
-        if (p.z() <= f.top && (p.head<2>() - f.centre).squaredNorm() <= f.radius * f.radius)
-            return true;
-    return false;
-}
-
-}  // namespace
-
+/**
+ * The discrete update reduces every end point to its voxel anyway, so feeding it one voxel
+ * centre per run of neighbouring pixels (same voxel as the pixel to the left or above) gives
+ * the same update with far fewer end points.
+ */
 void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan& obs,
                                        const FlatPose& robot,
                                        const std::vector<PersonFootprint>& people) {
     Impl& m = *impl_;
     const float maxRange2 = float(params_.maxRange * params_.maxRange);
     const SensorFrame frame = sensorFrameInWorld(obs, robot);
+    const PeopleBuckets onPeople(people);
     m.cloud.clear();
     m.rowAbove.assign(std::size_t(obs.rangeImage.cols()), kNoKey);
     std::uint64_t previous = kNoKey;
@@ -103,7 +94,7 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
             return;
         }
         if (!people.empty() && (p - frame.origin).squaredNorm() <= maxRange2 &&
-            onAPerson(p, people)) {
+            onPeople.contains(p)) {
             m.personKeys.insert(key);
             previous = kNoKey;
             m.rowAbove[std::size_t(col)] = kNoKey;
