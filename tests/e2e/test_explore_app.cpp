@@ -53,6 +53,20 @@ TEST(ExploreApp, TinyRoomMissionWritesAllOutputsWithPlausibleMetrics) {
         EXPECT_FALSE(std::isnan(jsonNumber(summary, key))) << key;
     EXPECT_NE(summary.find("\"finished\":"), std::string::npos);
 
+    // timing.json: the wall time per stage adds up to no more than the run's wall time.
+    const std::string timing = readText(dir / "run" / "timing.json");
+    const double wall = jsonNumber(timing, "wall_time_s");
+    double stages = 0.0;
+    for (const char* stage :
+         {"render", "people", "map", "world", "checks", "planning", "recording", "other"}) {
+        const double s = jsonNumber(timing, stage);
+        EXPECT_GE(s, 0.0) << stage;
+        stages += s;
+    }
+    EXPECT_GT(jsonNumber(timing, "map"), 0.0);
+    EXPECT_GT(jsonNumber(timing, "render"), 0.0);
+    EXPECT_NEAR(stages, wall, 0.01 + 1e-3 * 8);  // each printed to 1 ms
+
     // A 60 m^3 room explored for up to 120 s: most of it must be known, nothing hit.
     EXPECT_GT(jsonNumber(summary, "coverage_percent"), 60.0);
     EXPECT_LE(jsonNumber(summary, "coverage_percent"), 100.0);

@@ -59,7 +59,7 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
         rec.flush();
         rec.writeSummary(s);
         rec.writeCollisions();
-        rec.writeTiming(2.0, 100.0);
+        rec.writeTiming(2.0, 100.0, {{"render", 0.5}, {"map", 1.25}});
     }
     const auto ts = readText(dir / "nested" / "timeseries.csv");
     EXPECT_EQ(ts,
@@ -77,8 +77,11 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
     EXPECT_EQ(summary.find("reachable_percent"), std::string::npos);  // unset: not written
     EXPECT_EQ(readText(dir / "nested" / "collisions.csv"),
               "person,start_s,end_s,tracked\n2,10.000,11.500,-1\n");
-    EXPECT_NE(readText(dir / "nested" / "timing.json").find("\"speedup_vs_real_time\": 50.00"),
-              std::string::npos);
+    const std::string timing = readText(dir / "nested" / "timing.json");
+    EXPECT_NE(timing.find("\"speedup_vs_real_time\": 50.00,"), std::string::npos) << timing;
+    EXPECT_NE(timing.find("\"wall_time_by_stage_s\": {\"render\": 0.500, \"map\": 1.250}"),
+              std::string::npos)
+        << timing;
     fs::remove_all(dir);
 }
 

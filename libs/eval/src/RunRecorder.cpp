@@ -189,7 +189,8 @@ void RunRecorder::writeSummary(const RunSummary& s) const {
     std::fclose(f);
 }
 
-void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec) const {
+void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec,
+                              const std::vector<std::pair<std::string, double>>& stages) const {
     const std::string file = path("timing.json");
     std::FILE* f = std::fopen(file.c_str(), "w");
     if (!f)
@@ -205,8 +206,15 @@ void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec) const {
     std::fprintf(f, "  \"plan_wall_ms_max\": %.4f,\n", percentile(ms, 100));
     std::fprintf(f, "  \"wall_time_s\": %.3f,\n", wallTimeSec);
     std::fprintf(f, "  \"simulated_time_s\": %.3f,\n", simTimeSec);
-    std::fprintf(f, "  \"speedup_vs_real_time\": %.2f\n",
-                 wallTimeSec > 0 ? simTimeSec / wallTimeSec : 0.0);
+    std::fprintf(f, "  \"speedup_vs_real_time\": %.2f%s\n",
+                 wallTimeSec > 0 ? simTimeSec / wallTimeSec : 0.0, stages.empty() ? "" : ",");
+    if (!stages.empty()) {
+        std::fprintf(f, "  \"wall_time_by_stage_s\": {");
+        for (std::size_t i = 0; i < stages.size(); ++i)
+            std::fprintf(f, "%s\"%s\": %.3f", i == 0 ? "" : ", ", stages[i].first.c_str(),
+                         stages[i].second);
+        std::fprintf(f, "}\n");
+    }
     std::fprintf(f, "}\n");
     std::fclose(f);
 }

@@ -20,6 +20,7 @@
 #include "Outputs.h"
 #include "RawlogRecorder.h"
 #include "SceneExport.h"
+#include "StageClock.h"
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
@@ -142,16 +143,32 @@ struct Mission::Impl {
     bool stopping() const { return timeUp() || (stopFlag && *stopFlag); }
 
     void captureFrame() {
+        render();
+        if (planner->usesPeople()) {
+            std::vector<mapping::PersonFootprint> footprints;
+            {
+                const auto timed = stages.time(Stage::People);
+                observePeople();  // before the map takes the frame: the detector needs the old map
+                footprints = peopleInput.mapFootprints(t, people.params().bodySize);
+            }
+            const auto timed = stages.time(Stage::Map);
+            map.insertObservation(frame, drone.pose(), footprints);
+        } else {
+            const auto timed = stages.time(Stage::Map);
+            map.insertObservation(frame, drone.pose());
+        }
+        record();
+    }
+
+    void render() {
+        const auto timed = stages.time(Stage::Render);
         if (!world.people.empty())
             caster.setPeople(people.states(), people.params().bodySize);
         camera.render(caster, drone.pose(), t, noiseRng, frame);
-        if (planner->usesPeople()) {
-            observePeople();  // before the map takes the frame: the detector needs the old map
-            map.insertObservation(frame, drone.pose(),
-                                  peopleInput.mapFootprints(t, people.params().bodySize));
-        } else {
-            map.insertObservation(frame, drone.pose());
-        }
+    }
+
+    void record() {
+        const auto timed = stages.time(Stage::Recording);
         recorder.addPose(t, drone.pose());
         if (rawlog)
             rawlog->addFrame(frame, t, drone.pose(), people.states(), people.params().bodySize);
@@ -225,6 +242,7 @@ struct Mission::Impl {
                 h = std::min(h, settings.maxTime - explorationTime());
             h = std::max(h, 0.0);
             bool reached = false;
+            std::optional<StageClock::Scope> worldTime(std::in_place, stages, Stage::World);
             if (flying) {
                 const Eigen::Vector3d before = drone.pose().position;
                 const double used = drone.advance(h);
@@ -239,6 +257,7 @@ struct Mission::Impl {
             monitor.update(t, drone.pose(), people.states());
             for (std::size_t e = episodes; e < monitor.events().size(); ++e)
                 collisionTracked.push_back(trackedAtCollision(monitor.events()[e].personIndex));
+            worldTime.reset();
             bool captured = false;
             if (t >= nextFrame - kEps) {
                 captureFrame();
@@ -249,6 +268,7 @@ struct Mission::Impl {
             if (reached)
                 return true;
             if (captured && !flying && watchingHover && planner->usesPeople()) {
+                const auto timed = stages.time(Stage::Checks);
                 pendingEvasion = planner->evasion(context(), hoverSafeUntil);
                 if (pendingEvasion)
                     return false;
@@ -289,8 +309,10 @@ struct Mission::Impl {
             const std::uint64_t mapBefore = map.revision();
             advance(framePeriod, true);
             const bool recheck = map.revision() != mapBefore || planner->usesPeople();
-            if (plan && drone.hasGoal() && recheck)
+            if (plan && drone.hasGoal() && recheck) {
+                const auto timed = stages.time(Stage::Checks);
                 aborted = !planner->keepFlying(context(), *plan, index);
+            }
         }
         drone.clearGoal();
         return !aborted;
@@ -353,7 +375,10 @@ struct Mission::Impl {
         const auto t0 = Clock::now();
         if (settings.planningTime == "measured")  // wall time: never where runs must repeat
             ctx.deadline = planning::PlanningDeadline::in(settings.planningDeadline);
-        planning::Plan plan = planner->plan(ctx);
+        planning::Plan plan = [&] {
+            const auto timed = stages.time(Stage::Planning);
+            return planner->plan(ctx);
+        }();
         const double wall = secondsSince(t0);
         if (!plan.tree.empty())
             lastTree = plan.tree;
@@ -366,12 +391,16 @@ struct Mission::Impl {
         if (hoverUntil(t + charged))
             return std::nullopt;
         const bool newFrames = nextFrame != framesBefore;
-        if (newFrames && planner->usesPeople() && !plan.waypoints.empty() &&
-            !planner->startsSafely(context(), plan)) {
+        if (newFrames && planner->usesPeople() && !plan.waypoints.empty() && !startsSafely(plan)) {
             ++stalePlans;
             return std::nullopt;
         }
         return plan;
+    }
+
+    bool startsSafely(const planning::Plan& plan) {
+        const auto timed = stages.time(Stage::Checks);
+        return planner->startsSafely(context(), plan);
     }
 
     void explore() {
@@ -486,6 +515,7 @@ struct Mission::Impl {
     int hoverEvasions = 0;  ///< escapes flown while hovering (planning, waiting)
     int stalePlans = 0;     ///< plans unsafe against the frames taken while they were made
     bool watchingHover = false;
+    StageClock stages;
     double hoverSafeUntil = 0.0;  ///< while watchingHover: how long hovering must stay safe
     std::optional<planning::Plan> pendingEvasion;
     bool finished = false;
@@ -522,7 +552,7 @@ eval::RunSummary Mission::run() {
     m.memory.addFinal(m.explorationTime(), m.map.knownVolumeInBox(), m.map.octree().size());
     m.recorder.flush();
     m.recorder.writeSummary(summary);
-    m.recorder.writeTiming(summary.wallTime, m.t);
+    m.recorder.writeTiming(summary.wallTime, m.t, m.stages.report(summary.wallTime));
     m.recorder.writeCollisions();
     if (!m.map.writeBinary(m.recorder.path("map.bt")))
         throw std::runtime_error("cannot write " + m.recorder.path("map.bt"));

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "daep/common/BuildInfo.h"
@@ -99,8 +100,12 @@ public:
     const std::vector<double>& wallPlanTimes() const { return wallPlanTimes_; }
 
     void writeSummary(const RunSummary& summary) const;
-    /** Real planner durations (not deterministic, so kept apart from summary.json). */
-    void writeTiming(double wallTimeSec, double simTimeSec) const;
+    /**
+     * Real planner durations and, when given, the wall time per stage of the run (not
+     * deterministic, so kept apart from summary.json).
+     */
+    void writeTiming(double wallTimeSec, double simTimeSec,
+                     const std::vector<std::pair<std::string, double>>& stages = {}) const;
     void writeCollisions() const;
 
     /** Flushes the streams (called by the mission after each plan). */
