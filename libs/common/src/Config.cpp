@@ -10,14 +10,8 @@
 
 #include "daep/common/Error.h"
 #include "daep/common/TracedConfig.h"
-#include "daep/common/Types.h"
 
 namespace daep {
-
-double wrapAngle(double a) {
-    a = std::remainder(a, 2.0 * M_PI);
-    return a <= -M_PI ? a + 2.0 * M_PI : a;
-}
 
 ConfigReader::ConfigReader(const mrpt::config::CConfigFileBase& cfg, std::string section,
                            std::string source)

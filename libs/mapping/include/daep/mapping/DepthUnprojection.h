@@ -21,11 +21,6 @@ SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
                                const FlatPose& robot);
 
 /**
- * World-frame points of every pixel with a return (depth > 0), in row-major pixel order: the
- * same points and order as CObservation3DRangeScan::unprojectInto with the sensor pose and the
- * robot pose applied (X forward, Y left, Z up), without copying the observation.
- */
-/**
  * Whether the frame sees past a world point: the point projects into the image and its pixel
  * returns more than `margin` beyond the point's depth, or returns nothing while the point
  * lies within the sensor's maxRange. False behind the camera, outside the image, or where a
@@ -34,6 +29,11 @@ SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
 bool seesPast(const mrpt::obs::CObservation3DRangeScan& obs, const SensorFrame& frame,
               const Eigen::Vector3f& point, float margin);
 
+/**
+ * World-frame points of every pixel with a return (depth > 0), in row-major pixel order: the
+ * same points and order as CObservation3DRangeScan::unprojectInto with the sensor pose and the
+ * robot pose applied (X forward, Y left, Z up), without copying the observation.
+ */
 std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3DRangeScan& obs,
                                                  const FlatPose& robot);
 

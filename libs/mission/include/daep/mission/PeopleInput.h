@@ -43,11 +43,6 @@ struct PeopleInputParams {
     static PeopleInputParams fromConfig(const mrpt::config::CConfigFileBase& config);
 };
 
-/**
- * The people a people-aware planner sees: at every camera frame, measurements from the
- * chosen source go into one Kalman track per person (kept across frames), and forecasts()
- * gives the tracks' closed-form predictions.
- */
 /** A depth frame and the robot pose it was taken from. */
 struct DepthView {
     const mrpt::obs::CObservation3DRangeScan* frame = nullptr;
@@ -62,6 +57,11 @@ struct DepthView {
 perception::PeopleTracker::EmptyTest seenEmptyIn(const DepthView& view,
                                                  const Eigen::Vector3d& bodySize);
 
+/**
+ * The people a people-aware planner sees: at every camera frame, measurements from the
+ * chosen source go into one Kalman track per person (kept across frames), and forecasts()
+ * gives the tracks' closed-form predictions.
+ */
 class PeopleInput {
 public:
     PeopleInput(const PeopleInputParams& params, std::uint64_t seed);
