@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "WorldRender.h"
 #include "daep/common/AppMain.h"
 #include "daep/common/CommandLine.h"
 #include "daep/common/Error.h"
+#include "daep/eval/WorldRender.h"
 #include "daep/world/GazeboImport.h"
 #include "daep/world/ReachableVolume.h"
 #include "daep/world/VoxelMaps.h"
@@ -167,7 +167,7 @@ int runImport(const Args& a) {
 int runRender(const Args& a) {
     requireOut(a);
     const auto world = daep::world::loadWorldFile(daep::world::resolveWorldPath(a.positional[0]));
-    daep::worldapp::renderWorldPng(world, a.out, a.size);
+    daep::eval::renderWorldPng(world, a.out, a.size);
     std::cout << "wrote " << a.out << " (" << a.size << " x " << a.size << " px)\n";
     return 0;
 }

@@ -372,17 +372,18 @@ Rgb seriesColor(std::size_t i) {
     return palette[i % (sizeof palette / sizeof palette[0])];
 }
 
+double niceStep(double raw) {
+    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+    for (double m : {1.0, 2.0, 2.5, 5.0})
+        if (m * magnitude >= raw)
+            return m * magnitude;
+    return 10.0 * magnitude;
+}
+
 std::vector<double> niceTicks(double lo, double hi, int count) {
     if (!(hi > lo))
         hi = lo + 1.0;
-    const double raw = (hi - lo) / std::max(1, count - 1);
-    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
-    double step = magnitude;
-    for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
-        if (m * magnitude >= raw) {
-            step = m * magnitude;
-            break;
-        }
+    const double step = niceStep((hi - lo) / std::max(1, count - 1));
     const double first = std::floor(lo / step + 1e-9) * step;
     std::vector<double> ticks;
     for (int i = 0; first + i * step < hi + step * (1.0 - 1e-9); ++i)

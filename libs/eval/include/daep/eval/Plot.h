@@ -140,6 +140,8 @@ private:
 /** A distinct colour for series i (a fixed qualitative palette). */
 Rgb seriesColor(std::size_t i);
 
+/** The smallest of 1, 2, 2.5, 5 and 10 times a power of ten that is at least raw (> 0). */
+double niceStep(double raw);
 /** "Nice" tick values covering [lo, hi], about `count` of them. */
 std::vector<double> niceTicks(double lo, double hi, int count = 6);
 

@@ -1,4 +1,4 @@
-#include "WorldRender.h"
+#include "daep/eval/WorldRender.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,9 @@
 #include <stdexcept>
 #include <vector>
 
-namespace daep::worldapp {
+#include "daep/eval/Plot.h"
+
+namespace daep::eval {
 namespace {
 
 using world::WorldSpec;
@@ -126,18 +128,9 @@ void drawGeometry(cv::Mat& img, const WorldSpec& w, const Projection& proj) {
     }
 }
 
-/** 1, 2 or 5 times a power of ten, near `target`. */
-double niceStep(double target) {
-    const double p = std::pow(10.0, std::floor(std::log10(target)));
-    for (double m : {1.0, 2.0, 5.0})
-        if (m * p >= target * 0.7)
-            return m * p;
-    return 10.0 * p;
-}
-
 std::string metres(double v) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, v >= 1.0 ? "%.0f m" : "%.1f m", v);
+    std::snprintf(buf, sizeof buf, "%g m", v);
     return buf;
 }
 
@@ -325,7 +318,7 @@ void renderWorldPng(const WorldSpec& w, const std::string& pngPath, int size) {
     const Projection proj(lo.x(), hi.y(), scale, origin);
 
     cv::Mat img(size, size, CV_8UC3, cv::Scalar(255, 255, 255));
-    const double step = niceStep((hi - lo).maxCoeff() / 8.0);
+    const double step = niceStep((hi - lo).maxCoeff() / 10.0);  // about ten grid lines
     drawGrid(img, proj, lo, hi, step);
     drawGeometry(img, w, proj);
     const auto& b = w.explorationBox;
@@ -341,4 +334,4 @@ void renderWorldPng(const WorldSpec& w, const std::string& pngPath, int size) {
         throw std::runtime_error(pngPath + ": cannot write PNG");
 }
 
-}  // namespace daep::worldapp
+}  // namespace daep::eval

@@ -4,7 +4,7 @@
 
 #include "daep/world/WorldSpec.h"
 
-namespace daep::worldapp {
+namespace daep::eval {
 
 /**
  * Draws a top-down orthographic view of `world` into a `size` x `size` PNG: static geometry
@@ -14,4 +14,4 @@ namespace daep::worldapp {
  */
 void renderWorldPng(const world::WorldSpec& world, const std::string& pngPath, int size);
 
-}  // namespace daep::worldapp
+}  // namespace daep::eval
