@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../planning/PlanningTestUtil.h"
+#include "BenchParams.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/perception/PersonTrack.h"
 #include "daep/planning/GainEvaluator.h"
@@ -29,12 +30,8 @@ inline std::unique_ptr<mapping::ExplorationMap> lookAroundAtStarts(const world::
                                                                    const world::RayCaster& caster,
                                                                    std::size_t starts,
                                                                    std::vector<FlatPose>& poses) {
-    sim::CameraParams cp;
-    cp.width = 320;
-    cp.height = 240;
-    const sim::DepthCamera camera(cp);
-    auto map =
-        std::make_unique<mapping::ExplorationMap>(mapping::MapParams{}, world.explorationBox);
+    const sim::DepthCamera camera(benchCamera(320, 240));
+    auto map = std::make_unique<mapping::ExplorationMap>(benchMap(), world.explorationBox);
     std::mt19937_64 rng(1);
     mrpt::obs::CObservation3DRangeScan obs;
     for (std::size_t s = 0; s < std::min(starts, world.starts.size()); ++s) {

@@ -31,7 +31,7 @@ const daep::bench::PlanScene& exhibition() {
         s.world = daep::world::loadWorldFile(DAEP_SOURCE_DIR "/share/daep/worlds/exhibition.yaml");
         daep::world::RayCaster caster(s.world);
         daep::world::PeopleSimulator walkers(s.world.people, daep::world::PeopleParams{});
-        daep::perception::PeopleTracker tracker(daep::perception::TrackerParams{});
+        daep::perception::PeopleTracker tracker(daep::bench::benchTracker());
         walkers.advance(s.time - 2.0);
         for (int k = 0; k <= 10; ++k) {
             std::vector<daep::perception::PersonMeasurement> m;

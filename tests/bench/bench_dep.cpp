@@ -6,6 +6,7 @@
 #include <random>
 
 #include "../planning/PlanningTestUtil.h"
+#include "BenchParams.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/planning/DepPlanner.h"
 #include "daep/sim/DepthCamera.h"
@@ -54,10 +55,7 @@ struct CafeMission {
     }
 
     void observe() {
-        daep::sim::CameraParams params;
-        params.width = 320;
-        params.height = 240;
-        static const daep::sim::DepthCamera camera(params);
+        static const daep::sim::DepthCamera camera(daep::bench::benchCamera(320, 240));
         mrpt::obs::CObservation3DRangeScan frame;
         camera.render(caster, pose, 0.0, noise, frame);
         map->insertObservation(frame, pose);

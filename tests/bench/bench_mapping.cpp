@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "BenchParams.h"
 #include "daep/mapping/DepthUnprojection.h"
 #include "daep/mapping/ExplorationMap.h"
 
@@ -16,7 +17,6 @@ namespace {
 using daep::Aabb;
 using daep::FlatPose;
 using daep::mapping::ExplorationMap;
-using daep::mapping::MapParams;
 
 // A 10 x 8 x 3 m room; the camera stands at (3, 3, 1.5) so walls are 2-7 m away.
 const Eigen::Vector3d kRoomMin(-1.0, -1.0, 0.0), kRoomMax(9.0, 7.0, 3.0);
@@ -77,7 +77,7 @@ void BM_MappingInsertObservation640x480(benchmark::State& state) {
     for (int i = 0; i < kViews; ++i) {
         frames.push_back(roomFrame(640, 480, viewYaw(i)));
     }
-    ExplorationMap map(MapParams{}, roomBox());
+    ExplorationMap map(daep::bench::benchMap(), roomBox());
     int i = 0;
     for (auto _ : state) {
         map.insertObservation(frames[std::size_t(i % kViews)], cameraPose(viewYaw(i % kViews)));
@@ -92,7 +92,7 @@ void BM_MappingInsertObservation640x480FreshMap(benchmark::State& state) {
     const auto frame = roomFrame(640, 480, 0.0);
     for (auto _ : state) {
         state.PauseTiming();
-        ExplorationMap map(MapParams{}, roomBox());
+        ExplorationMap map(daep::bench::benchMap(), roomBox());
         state.ResumeTiming();
         map.insertObservation(frame, cameraPose(0.0));
         benchmark::DoNotOptimize(map.knownCellsInBox());
@@ -106,7 +106,7 @@ void BM_MappingInsertPointCloud320x240(benchmark::State& state) {
         clouds.push_back(daep::mapping::unprojectDepthImage(roomFrame(320, 240, viewYaw(i)),
                                                             cameraPose(viewYaw(i))));
     }
-    ExplorationMap map(MapParams{}, roomBox());
+    ExplorationMap map(daep::bench::benchMap(), roomBox());
     int i = 0;
     for (auto _ : state) {
         map.insertPointCloud(kCamera, clouds[std::size_t(i % kViews)]);
@@ -138,7 +138,7 @@ BENCHMARK(BM_MappingUnprojectMrpt640x480)->Unit(benchmark::kMillisecond);
 
 /** 1e6 state() lookups at random points of the room plus 1 m around it. */
 void BM_MappingStateLookups1M(benchmark::State& state) {
-    ExplorationMap map(MapParams{}, roomBox());
+    ExplorationMap map(daep::bench::benchMap(), roomBox());
     for (int i = 0; i < kViews; ++i) {
         map.insertObservation(roomFrame(320, 240, viewYaw(i)), cameraPose(viewYaw(i)));
     }

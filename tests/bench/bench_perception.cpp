@@ -5,6 +5,7 @@
 #include <memory>
 #include <random>
 
+#include "BenchParams.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/perception/PeopleDetector.h"
 #include "daep/perception/PeopleTracker.h"
@@ -23,15 +24,12 @@ struct DetectionScene {
     daep::world::WorldSpec world =
         daep::world::loadWorldFile(DAEP_SOURCE_DIR "/share/daep/worlds/exhibition.yaml");
     daep::world::RayCaster caster{world};
-    daep::mapping::ExplorationMap map{daep::mapping::MapParams{}, world.explorationBox};
+    daep::mapping::ExplorationMap map{daep::bench::benchMap(), world.explorationBox};
     mrpt::obs::CObservation3DRangeScan frame;
     daep::FlatPose drone{{-3.5, -3.5, 1.3}, M_PI};
 
     DetectionScene(int width, int height) {
-        daep::sim::CameraParams p;
-        p.width = width;
-        p.height = height;
-        const daep::sim::DepthCamera camera(p);
+        const daep::sim::DepthCamera camera(daep::bench::benchCamera(width, height));
         daep::world::PeopleSimulator people(world.people, daep::world::PeopleParams{});
         caster.setPeople(people.states(), people.params().bodySize);
         std::mt19937_64 rng(1);
@@ -49,7 +47,7 @@ struct DetectionScene {
 void BM_DetectAndTrackPeople(benchmark::State& state) {
     const DetectionScene scene(int(state.range(0)), int(state.range(1)));
     daep::perception::PeopleDetector detector{daep::perception::DetectorParams{}};
-    daep::perception::PeopleTracker tracker{daep::perception::TrackerParams{}};
+    daep::perception::PeopleTracker tracker{daep::bench::benchTracker()};
     double t = 5.0;
     std::size_t found = 0;
     for (auto _ : state) {

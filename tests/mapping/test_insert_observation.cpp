@@ -177,11 +177,12 @@ TEST(InsertObservation, NoReturnPixelsClearTheirRaysOnlyWhenAskedTo) {
     box.min = {-1, -8, -4};
     box.max = {10, 8, 4};
     const auto sky = makeFrame(80, 60, 0.0, mrpt::poses::CPose3D());  // nothing returns
-    ExplorationMap indoor(MapParams{}, box);
+    MapParams params;
+    params.noReturnIsFree = false;
+    ExplorationMap indoor(params, box);
     indoor.insertObservation(sky, FlatPose{});
     EXPECT_EQ(indoor.knownVolumeInBox(), 0.0);
-    MapParams params;
-    params.noReturnIsFree = true;
+    params.noReturnIsFree = true;  // the default
     ExplorationMap outdoor(params, box);
     outdoor.insertObservation(sky, FlatPose{});
     for (const double x : {1.0, 3.0, 4.7})
@@ -214,7 +215,9 @@ TEST(InsertObservation, EqualsInsertingTheUnprojectedCloud) {
     box.min = {-6, -6, -3};
     box.max = {6, 6, 4};
     const FlatPose robot = makePose(0.4, 0.3, 1.0, 0.5);
-    ExplorationMap a(MapParams{}, box), b(MapParams{}, box);
+    MapParams returnsOnly;  // the cloud holds the pixels with a return only
+    returnsOnly.noReturnIsFree = false;
+    ExplorationMap a(returnsOnly, box), b(returnsOnly, box);
     a.insertObservation(obs, robot);
     const mrpt::poses::CPose3D sensor =
         mrpt::poses::CPose3D(0.4, 0.3, 1.0, 0.5, 0, 0) + obs.sensorPose;

@@ -31,8 +31,11 @@ mrpt::poses::CPose3D toMrpt(const FlatPose& p) {
     return mrpt::poses::CPose3D(p.position.x(), p.position.y(), p.position.z(), p.yaw, 0, 0);
 }
 
+/** The paper's camera (640 x 480) without noise. */
 CameraParams noiselessParams(double maxRange = 20.0) {
     CameraParams p;
+    p.width = 640;
+    p.height = 480;
     p.maxRange = maxRange;
     p.noiseSigma = 0.0;
     p.mountOffset = Eigen::Vector3d(0.1, 0.05, -0.03);
@@ -99,11 +102,11 @@ protected:
 };
 
 TEST(DepthCamera, IntrinsicsFromHorizontalFov) {
-    const CameraParams p;  // 640 x 480, 103.2 deg
-    EXPECT_NEAR(p.fx(), 320.0 / std::tan(51.6 * kDeg), 1e-9);
+    const CameraParams p;  // 320 x 240, 103.2 deg
+    EXPECT_NEAR(p.fx(), 160.0 / std::tan(51.6 * kDeg), 1e-9);
     EXPECT_NEAR(p.vfovRad() / kDeg, 86.8, 0.05);
-    EXPECT_DOUBLE_EQ(p.cx(), 319.5);
-    EXPECT_DOUBLE_EQ(p.cy(), 239.5);
+    EXPECT_DOUBLE_EQ(p.cx(), 159.5);
+    EXPECT_DOUBLE_EQ(p.cy(), 119.5);
 }
 
 TEST(DepthCamera, SensorPoseComposesMountOffsetWithYaw) {

@@ -42,7 +42,7 @@ struct MapParams {
      * Pixels with no return (nothing within the camera's range, which must exceed maxRange)
      * clear their ray up to maxRange: outdoors the open sky is otherwise never known.
      */
-    bool noReturnIsFree = false;
+    bool noReturnIsFree = true;
 };
 
 /**

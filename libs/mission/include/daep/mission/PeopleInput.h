@@ -33,7 +33,7 @@ struct PeopleInputParams {
      * detected: people found in the depth frames by the detector.
      */
     std::string source = "ground_truth";
-    double sensedRange = 5.0;        ///< m from the camera
+    double sensedRange = 10.0;       ///< m from the camera
     double sensedNoiseSigma = 0.05;  ///< m, Gaussian on each sensed position
     /** Depth returns on the people tracked lately are kept out of the map (see mapFootprints). */
     bool excludeFromMap = true;

@@ -12,7 +12,7 @@ namespace daep::perception {
 struct TrackerParams {
     PredictorParams predictor;
     /** A track not measured for this long (s) is dropped; until then it is predicted on. */
-    double dropAfter = 5.0;
+    double dropAfter = 20.0;
     /**
      * A confirmed track is dropped sooner when the sensor saw, this many updates in a row,
      * that nobody stands where it predicts the person (see update's seenEmpty).

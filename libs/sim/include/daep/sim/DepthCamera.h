@@ -22,12 +22,12 @@ namespace daep::sim {
  * span of the image follows from the height (86.8 deg at 640 x 480 and 103.2 deg).
  */
 struct CameraParams {
-    int width = 640;
-    int height = 480;
+    int width = 320;
+    int height = 240;
     double hfovRad = 103.2 * M_PI / 180.0;
-    double maxRange = 10.0;      ///< farther surfaces return no depth (0 in the image)
-    double rateHz = 30.0;
-    double noiseSigma = 0.005;   ///< m, Gaussian on depth
+    double maxRange = 100.0;  ///< farther surfaces return no depth (0 in the image)
+    double rateHz = 5.0;
+    double noiseSigma = 0.005;                              ///< m, Gaussian on depth
     Eigen::Vector3d mountOffset = Eigen::Vector3d::Zero();  ///< sensor position in the drone frame
 
     double fx() const;
