@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 
+#include <initializer_list>
 #include <string>
+#include <tuple>
 
 #include "ComponentParams.h"
 #include "daep/mission/PeopleInput.h"
@@ -17,14 +19,22 @@ protected:
     mrpt::config::CConfigFile ini{kDefaults};
 };
 
+using Field = std::tuple<const char*, double, double>;
+
+/** Each field's struct default (second) equals its value from defaults.ini (third). */
+void expectSame(std::initializer_list<Field> fields) {
+    for (const auto& [name, byDefault, fromIni] : fields)
+        EXPECT_DOUBLE_EQ(byDefault, fromIni) << name;
+}
+
 TEST_F(ComponentDefaults, Camera) {
     const auto d = daep::sim::CameraParams{}, i = daep::mission::loadCameraParams(ini);
-    EXPECT_EQ(d.width, i.width);
-    EXPECT_EQ(d.height, i.height);
-    EXPECT_DOUBLE_EQ(d.hfovRad, i.hfovRad);
-    EXPECT_DOUBLE_EQ(d.maxRange, i.maxRange);
-    EXPECT_DOUBLE_EQ(d.rateHz, i.rateHz);
-    EXPECT_DOUBLE_EQ(d.noiseSigma, i.noiseSigma);
+    expectSame({{"width", d.width, i.width},
+                {"height", d.height, i.height},
+                {"hfov_deg", d.hfovRad, i.hfovRad},
+                {"max_range", d.maxRange, i.maxRange},
+                {"rate_hz", d.rateHz, i.rateHz},
+                {"noise_sigma", d.noiseSigma, i.noiseSigma}});
 }
 
 TEST_F(ComponentDefaults, DroneAndPeople) {
@@ -40,54 +50,53 @@ TEST_F(ComponentDefaults, DroneAndPeople) {
 
 TEST_F(ComponentDefaults, Map) {
     const auto d = daep::mapping::MapParams{}, i = daep::mission::loadMapParams(ini);
-    EXPECT_DOUBLE_EQ(d.resolution, i.resolution);
-    EXPECT_DOUBLE_EQ(d.maxRange, i.maxRange);
-    EXPECT_DOUBLE_EQ(d.probHit, i.probHit);
-    EXPECT_DOUBLE_EQ(d.probMiss, i.probMiss);
-    EXPECT_DOUBLE_EQ(d.clampMin, i.clampMin);
-    EXPECT_DOUBLE_EQ(d.clampMax, i.clampMax);
-    EXPECT_EQ(d.noReturnIsFree, i.noReturnIsFree);
+    expectSame({{"resolution", d.resolution, i.resolution},
+                {"max_range", d.maxRange, i.maxRange},
+                {"prob_hit", d.probHit, i.probHit},
+                {"prob_miss", d.probMiss, i.probMiss},
+                {"clamp_min", d.clampMin, i.clampMin},
+                {"clamp_max", d.clampMax, i.clampMax},
+                {"no_return_free", d.noReturnIsFree, i.noReturnIsFree}});
 }
 
 TEST_F(ComponentDefaults, Detector) {
     const auto d = daep::perception::DetectorParams{}, i = daep::mission::loadDetectorParams(ini);
-    for (const auto& [name, a, b] :
-         {std::tuple{"max_range", d.maxRange, i.maxRange},
-          std::tuple{"floor_height", d.floorHeight, i.floorHeight},
-          std::tuple{"ceiling_height", d.ceilingHeight, i.ceilingHeight},
-          std::tuple{"max_person_top", d.maxPersonTop, i.maxPersonTop},
-          std::tuple{"min_vertical_extent", d.minVerticalExtent, i.minVerticalExtent},
-          std::tuple{"max_width", d.maxWidth, i.maxWidth},
-          std::tuple{"max_depth_spread", d.maxDepthSpread, i.maxDepthSpread},
-          std::tuple{"min_area", d.minArea, i.minArea},
-          std::tuple{"min_evidence_fraction", d.minEvidenceFraction, i.minEvidenceFraction},
-          std::tuple{"depth_jump", d.depthJump, i.depthJump},
-          std::tuple{"max_grazing_deg", d.maxGrazingAngle, i.maxGrazingAngle},
-          std::tuple{"surface_margin", d.surfaceMargin, i.surfaceMargin},
-          std::tuple{"centre_offset", d.centreOffset, i.centreOffset},
-          std::tuple{"merge_distance", d.mergeDistance, i.mergeDistance},
-          std::tuple{"sigma_along", d.sigmaAlong, i.sigmaAlong},
-          std::tuple{"sigma_across", d.sigmaAcross, i.sigmaAcross},
-          std::tuple{"imprint_keep_s", d.imprintKeep, i.imprintKeep},
-          std::tuple{"min_fresh_fraction", d.minFreshFraction, i.minFreshFraction},
-          std::tuple{"see_through_depth", d.seeThroughDepth, i.seeThroughDepth},
-          std::tuple{"body_half_width", d.bodyHalfWidth, i.bodyHalfWidth},
-          std::tuple{"body_height", d.bodyHeight, i.bodyHeight}})
-        EXPECT_DOUBLE_EQ(a, b) << name;
-    EXPECT_EQ(d.morphKernel, i.morphKernel);
-    EXPECT_EQ(d.pixelStride, i.pixelStride);
+    expectSame({{"max_range", d.maxRange, i.maxRange},
+                {"floor_height", d.floorHeight, i.floorHeight},
+                {"ceiling_height", d.ceilingHeight, i.ceilingHeight},
+                {"max_person_top", d.maxPersonTop, i.maxPersonTop},
+                {"min_vertical_extent", d.minVerticalExtent, i.minVerticalExtent},
+                {"max_width", d.maxWidth, i.maxWidth},
+                {"max_depth_spread", d.maxDepthSpread, i.maxDepthSpread},
+                {"min_area", d.minArea, i.minArea},
+                {"min_evidence_fraction", d.minEvidenceFraction, i.minEvidenceFraction},
+                {"depth_jump", d.depthJump, i.depthJump},
+                {"max_grazing_deg", d.maxGrazingAngle, i.maxGrazingAngle},
+                {"surface_margin", d.surfaceMargin, i.surfaceMargin},
+                {"centre_offset", d.centreOffset, i.centreOffset},
+                {"merge_distance", d.mergeDistance, i.mergeDistance},
+                {"sigma_along", d.sigmaAlong, i.sigmaAlong},
+                {"sigma_across", d.sigmaAcross, i.sigmaAcross},
+                {"imprint_keep_s", d.imprintKeep, i.imprintKeep},
+                {"min_fresh_fraction", d.minFreshFraction, i.minFreshFraction},
+                {"see_through_depth", d.seeThroughDepth, i.seeThroughDepth},
+                {"body_half_width", d.bodyHalfWidth, i.bodyHalfWidth},
+                {"body_height", d.bodyHeight, i.bodyHeight}});
+    expectSame({{"morph_kernel_px", d.morphKernel, i.morphKernel},
+                {"pixel_stride", d.pixelStride, i.pixelStride}});
 }
 
 TEST_F(ComponentDefaults, TrackerAndPeopleInput) {
     const auto d = daep::perception::TrackerParams{}, i = daep::mission::loadTrackerParams(ini);
-    EXPECT_DOUBLE_EQ(d.predictor.accelNoise, i.predictor.accelNoise);
-    EXPECT_DOUBLE_EQ(d.predictor.measurementSigma, i.predictor.measurementSigma);
-    EXPECT_DOUBLE_EQ(d.predictor.initialSpeedSigma, i.predictor.initialSpeedSigma);
-    EXPECT_DOUBLE_EQ(d.dropAfter, i.dropAfter);
-    EXPECT_EQ(d.dropAfterMissesInView, i.dropAfterMissesInView);
-    EXPECT_DOUBLE_EQ(d.gateChi2, i.gateChi2);
-    EXPECT_EQ(d.confirmHits, i.confirmHits);
-    EXPECT_DOUBLE_EQ(d.tentativeDropAfter, i.tentativeDropAfter);
+    expectSame(
+        {{"accel_noise", d.predictor.accelNoise, i.predictor.accelNoise},
+         {"measurement_sigma", d.predictor.measurementSigma, i.predictor.measurementSigma},
+         {"initial_speed_sigma", d.predictor.initialSpeedSigma, i.predictor.initialSpeedSigma},
+         {"drop_after_s", d.dropAfter, i.dropAfter},
+         {"drop_after_misses_in_view", d.dropAfterMissesInView, i.dropAfterMissesInView},
+         {"gate_chi2", d.gateChi2, i.gateChi2},
+         {"confirm_hits", d.confirmHits, i.confirmHits},
+         {"tentative_drop_after_s", d.tentativeDropAfter, i.tentativeDropAfter}});
 
     const auto dp = daep::mission::PeopleInputParams{};
     const auto ip = daep::mission::PeopleInputParams::fromConfig(ini);
