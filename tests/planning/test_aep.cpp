@@ -245,6 +245,60 @@ TEST(AepPlanner, FinishedWhenNoFrontierIsLeft) {
     EXPECT_EQ(planner.cache().size(), 0u);
 }
 
+/** westKnown(16, 12) with a wall of hits across the corridor at x = 6 (a person's imprint). */
+std::unique_ptr<mapping::ExplorationMap> corridorClosedAtSix() {
+    auto map = westKnown(16.0, 12.0);
+    for (double y = 0.1; y < 4.0; y += 0.2)
+        for (double z = 0.1; z < 2.0; z += 0.2)
+            map->insertPointCloud({6.1, y, z}, {Eigen::Vector3f(6.1f, float(y), float(z))});
+    return map;
+}
+
+/** An AEP planner that has cached the frontiers at the corridor's unknown end (x > 12). */
+AepPlanner plannerThatSawTheFarEnd(const std::string& counter) {
+    const auto cfg = test::configFromText(
+        test::editKey(test::defaultsText(), "aep", "global_planner_counter", &counter));
+    AepPlanner planner(AepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 5);
+    auto open = westKnown(16.0, 12.0);
+    const Plan there = planner.plan(contextFor(*open, {9.0, 2.0, 1.0}));
+    EXPECT_FALSE(there.waypoints.empty()) << there.reason;
+    EXPECT_GT(planner.cache().size(), 0u);
+    return planner;
+}
+
+TEST(AepPlanner, AsTheReferenceBaselineItKeepsTryingWhileAFrontierIsLeft) {
+    // The reference AEP's loop ends only when no frontier is left: back at x = 2 behind the
+    // imprint, every global plan fails, and the drone hovers global_retry_wait_s and retries.
+    AepPlanner planner = plannerThatSawTheFarEnd("0");
+    ASSERT_EQ(planner.params().globalPlannerCounter, 0);
+    ASSERT_GT(planner.params().globalRetryWait, 0.0);
+    auto closed = corridorClosedAtSix();
+    PlanningContext ctx = contextFor(*closed, {2.0, 2.0, 1.0});
+    for (int k = 0; k < 40; ++k) {
+        ctx.time += 0.5;
+        const Plan plan = planner.plan(ctx);
+        ASSERT_EQ(plan.status, Plan::Status::Path) << k << ": " << plan.reason;
+        EXPECT_TRUE(plan.waypoints.empty()) << plan.reason;
+        EXPECT_EQ(plan.waitSeconds, planner.params().globalRetryWait);
+    }
+    // The imprint cleared (the person walked on), the way is open again.
+    auto open = westKnown(16.0, 12.0);
+    const Plan plan = planner.plan(contextFor(*open, {2.0, 2.0, 1.0}));
+    ASSERT_FALSE(plan.waypoints.empty()) << plan.reason;
+    EXPECT_GT(plan.waypoints.back().pose.position.x(), 6.5) << plan.reason;
+}
+
+TEST(AepPlanner, WithACounterItFinishesAfterThatManyFailedGlobalPlans) {
+    AepPlanner planner = plannerThatSawTheFarEnd("25");
+    auto closed = corridorClosedAtSix();
+    const PlanningContext ctx = contextFor(*closed, {2.0, 2.0, 1.0});
+    for (int k = 1; k < 25; ++k)
+        ASSERT_EQ(planner.plan(ctx).status, Plan::Status::Path) << k;
+    const Plan last = planner.plan(ctx);
+    EXPECT_EQ(last.status, Plan::Status::Finished) << last.reason;
+    EXPECT_NE(last.reason.find("after 25 global plans"), std::string::npos) << last.reason;
+}
+
 TEST(AepPlanner, KeepFlyingStopsWhenThePathGetsBlocked) {
     auto map = westKnown(24.0, 12.0);
     AepPlanner planner = makePlanner(8);
@@ -274,9 +328,9 @@ TEST(CreatePlanner, KnowsAepAndNamesItsMissingKeys) {
     const std::string text = test::defaultsText();
     const auto cfg = test::configFromText(text);
     EXPECT_EQ(createPlanner("aep", *cfg, 1)->name(), "aep");
-    for (const std::string key :
-         {"lambda", "zero_gain", "sigma_thresh", "cache_node_threshold", "global_min_nodes",
-          "goal_radius", "global_planner_counter", "max_sampling_radius", "rewire_radius"}) {
+    for (const std::string key : {"lambda", "zero_gain", "sigma_thresh", "cache_node_threshold",
+                                  "global_min_nodes", "goal_radius", "global_planner_counter",
+                                  "global_retry_wait_s", "max_sampling_radius", "rewire_radius"}) {
         const auto missing = test::configFromText(test::editKey(text, "aep", key));
         try {
             createPlanner("aep", *missing, 1);

@@ -53,7 +53,8 @@ AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
     if (p.globalGoalBias > 1.0)
         failRange(r, "global_goal_bias", p.globalGoalBias, "must be <= 1");
     p.goalRadius = requirePositive(r, "goal_radius");
-    p.globalPlannerCounter = requireIntAtLeast(r, "global_planner_counter", 1);
+    p.globalPlannerCounter = requireIntAtLeast(r, "global_planner_counter", 0);
+    p.globalRetryWait = requireNonNegative(r, "global_retry_wait_s");
     const ConfigReader planning(config, "planning");
     p.robotRadius = requireNonNegative(planning, "robot_radius");
     p.crossUnknown =
@@ -451,12 +452,15 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
         return plan;
     }
     ++globalFailures_;
-    if (globalFailures_ >= params_.globalPlannerCounter || cache_.size() == 0) {
+    const bool givingUp =
+        params_.globalPlannerCounter > 0 && globalFailures_ >= params_.globalPlannerCounter;
+    if (givingUp || cache_.size() == 0) {
         plan.status = Plan::Status::Finished;
         why << (cache_.size() == 0 ? "no frontiers left" : "no frontier reachable") << " after "
             << globalFailures_ << " global plans";
     } else {
         plan.status = Plan::Status::Path;
+        plan.waitSeconds = params_.globalRetryWait;
         why << "global: no path to any of " << cache_.size() << " frontiers (" << tree_.size() - 1
             << " nodes)";
     }

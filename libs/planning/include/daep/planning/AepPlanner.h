@@ -34,7 +34,10 @@ struct AepParams {
     int globalMaxSamples = 20000;
     double globalGoalBias = 0.2;
     double goalRadius = 1.5;
+    /** Failed global plans in a row that finish the mission; 0: never (only no frontier left). */
     int globalPlannerCounter = 25;
+    /** After a failed global plan that does not finish the mission, hover this long (s). */
+    double globalRetryWait = 0.0;
     double robotRadius = 0.3;
     /**
      * [planning] path_space = not_occupied: nodes and moves may lie in unknown space (only
