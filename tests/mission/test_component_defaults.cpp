@@ -96,7 +96,10 @@ TEST_F(ComponentDefaults, TrackerAndPeopleInput) {
          {"drop_after_misses_in_view", d.dropAfterMissesInView, i.dropAfterMissesInView},
          {"gate_chi2", d.gateChi2, i.gateChi2},
          {"confirm_hits", d.confirmHits, i.confirmHits},
-         {"tentative_drop_after_s", d.tentativeDropAfter, i.tentativeDropAfter}});
+         {"tentative_drop_after_s", d.tentativeDropAfter, i.tentativeDropAfter},
+         {"static_after_s", d.staticAfter, i.staticAfter},
+         {"static_radius", d.staticRadius, i.staticRadius},
+         {"static_memory_s", d.staticMemory, i.staticMemory}});
 
     const auto dp = daep::mission::PeopleInputParams{};
     const auto ip = daep::mission::PeopleInputParams::fromConfig(ini);

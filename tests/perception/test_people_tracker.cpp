@@ -250,3 +250,75 @@ TEST(PeopleTracker, ATrackThePlaceOfWhichIsSeenEmptyDiesAfterTheMissesInARow) {
     tracker.update(2.0, {at(5, -3.0, 0.0)}, allEmpty);
     EXPECT_EQ(tracker.forecasts().size(), 1u);  // measured every time: never a miss
 }
+
+TEST(PeopleTracker, ADetectionThatStaysPutIsStaticClutterAndItsSpotIsIgnoredForAWhile) {
+    TrackerParams params;
+    params.staticAfter = 5.0;
+    params.staticRadius = 0.4;
+    params.staticMemory = 10.0;
+    PeopleTracker tracker(params);
+    // A wall segment found at 5 Hz, its centre wobbling by a few cm: a confirmed "person"...
+    std::mt19937 rng(3);
+    std::normal_distribution<double> wobble(0.0, 0.05);
+    double t = 0.0;
+    for (; t < 4.99; t += 0.2)
+        tracker.update(t, {detection(2.0 + wobble(rng), 1.0 + wobble(rng))});
+    ASSERT_EQ(tracker.forecasts().size(), 1u);
+    EXPECT_EQ(tracker.staticClutterDropped(), 0);
+    // ...until it has stayed put for static_after_s: then it is dropped, and its spot starts
+    // no track while the memory lasts.
+    for (; t < 10.0; t += 0.2)
+        tracker.update(t, {detection(2.0 + wobble(rng), 1.0 + wobble(rng))});
+    EXPECT_EQ(tracker.staticClutterDropped(), 1);
+    EXPECT_EQ(tracker.size(), 0u);
+    // Someone detected elsewhere meanwhile is tracked as ever.
+    tracker.update(10.2, {detection(5.0, 1.0)});
+    EXPECT_EQ(tracker.size(), 1u);
+    // Once the memory has passed, a detection there starts a track again (the one seen
+    // elsewhere, once only, has died as tentative clutter meanwhile).
+    tracker.update(15.2, {detection(2.0, 1.0)});
+    ASSERT_EQ(tracker.tentativeForecasts().size(), 1u);
+    EXPECT_NEAR(tracker.tentativeForecasts()[0].state.x(), 2.0, 0.01);
+}
+
+TEST(PeopleTracker, APersonWhoWalksOrTurnsOnTheSpotIsNeverStaticClutter) {
+    TrackerParams params;  // the defaults: 5 s within 0.4 m
+    PeopleTracker tracker(params);
+    // Walking 0.35 m/s east, turning on the spot for pi s at x = 3, walking back: 20 s.
+    double x = 0.0, t = 0.0;
+    auto step = [&](double vx) {
+        tracker.update(t, {detection(x, 1.0)});
+        x += 0.2 * vx;
+        t += 0.2;
+    };
+    while (x < 3.0)
+        step(0.35);
+    for (double turned = 0.0; turned < M_PI; turned += 0.2)
+        step(0.0);
+    while (x > 0.0)
+        step(-0.35);
+    EXPECT_EQ(tracker.staticClutterDropped(), 0);
+    EXPECT_EQ(tracker.forecasts().size(), 1u);
+}
+
+TEST(PeopleTracker, PeopleWithKnownIdsAreNeverStaticClutter) {
+    PeopleTracker tracker(TrackerParams{});
+    for (double t = 0.0; t < 20.0; t += 0.2)
+        tracker.update(t, {at(7, 1.0, 1.0)});  // ground truth: someone standing still
+    EXPECT_EQ(tracker.staticClutterDropped(), 0);
+    EXPECT_EQ(tracker.forecasts().size(), 1u);
+}
+
+TEST(PeopleTracker, ClutterSeenStillThenOutOfViewIsDroppedAWalkerOutOfViewIsNot) {
+    PeopleTracker tracker(TrackerParams{});
+    // A wall segment detected for 2 s, then no longer looked at; someone walking north,
+    // detected for 2 s, then out of view.
+    for (double t = 0.0; t < 2.0; t += 0.2)
+        tracker.update(t, {detection(2.0, 1.0), detection(6.0, 0.35 * t)});
+    ASSERT_EQ(tracker.forecasts().size(), 2u);
+    for (double t = 2.0; t < 6.0; t += 0.2)
+        tracker.update(t, {});
+    EXPECT_EQ(tracker.staticClutterDropped(), 1);
+    ASSERT_EQ(tracker.forecasts().size(), 1u);
+    EXPECT_NEAR(tracker.forecasts()[0].state.x(), 6.0, 0.1);  // the walker, predicted on
+}

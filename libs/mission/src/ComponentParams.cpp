@@ -106,6 +106,9 @@ perception::TrackerParams loadTrackerParams(const mrpt::config::CConfigFileBase&
     p.gateChi2 = requirePositive(r, "gate_chi2");
     p.confirmHits = requireIntAtLeast(r, "confirm_hits", 1);
     p.tentativeDropAfter = requirePositive(r, "tentative_drop_after_s");
+    p.staticAfter = requireNonNegative(r, "static_after_s");
+    p.staticRadius = requirePositive(r, "static_radius");
+    p.staticMemory = requireNonNegative(r, "static_memory_s");
     return p;
 }
 

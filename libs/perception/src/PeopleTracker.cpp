@@ -33,6 +33,9 @@ PeopleTracker::PeopleTracker(const TrackerParams& params) : params_(params) {
     if (!(params.gateChi2 > 0) || params.confirmHits < 1 || !(params.tentativeDropAfter > 0))
         throw std::invalid_argument(
             "PeopleTracker: gateChi2, confirmHits and tentativeDropAfter must be positive");
+    if (!(params.staticAfter >= 0) || !(params.staticRadius > 0) || !(params.staticMemory >= 0))
+        throw std::invalid_argument(
+            "PeopleTracker: staticAfter and staticMemory must be >= 0, staticRadius positive");
 }
 
 PeopleTracker::Track* PeopleTracker::findById(int id) {
@@ -57,7 +60,48 @@ void PeopleTracker::updateOrStart(double time, int id, const PersonMeasurement& 
 void PeopleTracker::startAnonymous(double time, const PersonMeasurement& m) {
     PredictorParams p = params_.predictor;
     p.measurementSigma = std::sqrt(std::max(0.5 * m.covariance.trace(), 1e-12));
-    tracks_.push_back({nextAnonymousId_++, PersonTrack(p, time, m.position), time, 1, true});
+    Track t{nextAnonymousId_++, PersonTrack(p, time, m.position), time, 1, true};
+    t.stillAt = m.position;
+    t.stillSince = time;
+    tracks_.push_back(std::move(t));
+}
+
+void PeopleTracker::noteStill(Track& t, double time, const Eigen::Vector2d& m) {
+    if ((m - t.stillAt).norm() > params_.staticRadius) {
+        t.stillAt = m;
+        t.stillSince = time;
+    }
+}
+
+void PeopleTracker::dropStaticClutter(double time) {
+    if (!(params_.staticAfter > 0))
+        return;
+    clutter_.erase(
+        std::remove_if(clutter_.begin(), clutter_.end(),
+                       [&](const ClutterSpot& s) { return time - s.time > params_.staticMemory; }),
+        clutter_.end());
+    tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
+                                 [&](const Track& t) {
+                                     // Measured at one spot all along, and predicted to
+                                     // stay there (a walker out of view is predicted on).
+                                     if (!t.anonymous ||
+                                         time - t.stillSince < params_.staticAfter ||
+                                         (t.filter.predict(time).mean - t.stillAt).norm() >
+                                             params_.staticRadius)
+                                         return false;
+                                     clutter_.push_back({t.stillAt, time});
+                                     ++staticDropped_;
+                                     return true;
+                                 }),
+                  tracks_.end());
+}
+
+bool PeopleTracker::inClutter(double time, const Eigen::Vector2d& p) const {
+    for (const ClutterSpot& s : clutter_)
+        if (time - s.time <= params_.staticMemory &&
+            (p - s.position).norm() <= params_.staticRadius)
+            return true;
+    return false;
 }
 
 void PeopleTracker::associateAnonymous(double time,
@@ -89,6 +133,7 @@ void PeopleTracker::associateAnonymous(double time,
         t.lastSeen = time;
         t.missesInView = 0;
         ++t.hits;
+        noteStill(t, time, m.position);
         used[std::size_t(c)] = true;
     }
     for (std::size_t c = 0; c < anonymous.size(); ++c)
@@ -102,11 +147,12 @@ void PeopleTracker::update(double time, const std::vector<PersonMeasurement>& me
     for (const PersonMeasurement& m : measurements) {
         if (m.id >= 0)
             updateOrStart(time, m.id, m);
-        else
+        else if (!inClutter(time, m.position))
             anonymous.push_back(m);
     }
     if (!anonymous.empty())
         associateAnonymous(time, anonymous);
+    dropStaticClutter(time);
     if (seenEmpty)
         countMisses(time, seenEmpty);
     dropStale(time);

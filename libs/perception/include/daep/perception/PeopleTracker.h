@@ -28,6 +28,16 @@ struct TrackerParams {
     int confirmHits = 3;
     /** A tentative track not measured for this long (s) is dropped (clutter dies fast). */
     double tentativeDropAfter = 1.0;
+    /**
+     * An anonymous track whose measurements stay within staticRadius (m) of one spot for
+     * staticAfter seconds, and which is predicted to be there still, is static clutter (a wall
+     * the detector took for a person), not a person: it is dropped, and anonymous
+     * measurements within staticRadius of that spot are ignored for staticMemory seconds,
+     * while the map takes the surface in. 0: off.
+     */
+    double staticAfter = 5.0;
+    double staticRadius = 0.4;
+    double staticMemory = 10.0;
 };
 
 /** One track as the tracker sees it (for display and evaluation). */
@@ -76,6 +86,9 @@ public:
     /** Every live track, confirmed or not. */
     std::vector<TrackInfo> tracks() const;
 
+    /** Tracks dropped as static clutter so far. */
+    int staticClutterDropped() const { return staticDropped_; }
+
     /** Live tracks, confirmed and tentative. */
     std::size_t size() const { return tracks_.size(); }
     std::size_t confirmedCount() const;
@@ -89,6 +102,13 @@ private:
         int hits = 1;
         bool anonymous = false;
         int missesInView = 0;  ///< updates in a row that saw its predicted position empty
+        Eigen::Vector2d stillAt = Eigen::Vector2d::Zero();  ///< where its measurements stay...
+        double stillSince = 0.0;                            ///< ...since this time
+    };
+    /** Where static clutter was found, and when. */
+    struct ClutterSpot {
+        Eigen::Vector2d position;
+        double time = 0.0;
     };
 
     bool confirmed(const Track& t) const { return !t.anonymous || t.hits >= params_.confirmHits; }
@@ -98,10 +118,16 @@ private:
     void startAnonymous(double time, const PersonMeasurement& m);
     void dropStale(double time);
     void countMisses(double time, const EmptyTest& seenEmpty);
+    /** Measured at `m`: a track that stays put long enough becomes a clutter spot. */
+    void noteStill(Track& t, double time, const Eigen::Vector2d& m);
+    void dropStaticClutter(double time);
+    bool inClutter(double time, const Eigen::Vector2d& p) const;
 
     TrackerParams params_;
     std::vector<Track> tracks_;
+    std::vector<ClutterSpot> clutter_;
     int nextAnonymousId_ = 1000000;
+    int staticDropped_ = 0;
 };
 
 }  // namespace daep::perception
