@@ -82,7 +82,8 @@ std::string trackingSection(const std::string& source) {
            "\nsensed_range = 5\nsensed_noise_sigma = 0.05\nexclude_from_map = true\n"
            "[tracker]\naccel_noise = 0.02\nmeasurement_sigma = 0.02\ninitial_speed_sigma = 1\n"
            "drop_after_s = 2\ndrop_after_misses_in_view = 3\ngate_chi2 = 9.21\nconfirm_hits = 3\n"
-           "tentative_drop_after_s = 1\n" +
+           "tentative_drop_after_s = 1\nstatic_after_s = 5\nstatic_radius = 0.4\n"
+           "static_memory_s = 10\n" +
            detectorSection();
 }
 
