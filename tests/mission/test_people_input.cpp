@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "daep/common/Error.h"
 #include "daep/mission/PeopleInput.h"
@@ -67,24 +68,30 @@ TEST_F(SensedPeople, WallsAndOtherPeopleHideAPerson) {
     EXPECT_FALSE(sees(queue, 1));
 }
 
-/** The [detector] section of the defaults file, as it is. */
-std::string detectorSection() {
+/** The [name] section of the defaults file, as it is. */
+std::string defaultsSection(const std::string& name) {
     std::ifstream in(std::string(DAEP_SOURCE_DIR) + "/share/daep/config/defaults.ini");
     std::stringstream all;
     all << in.rdbuf();
     const std::string text = all.str();
-    const std::size_t from = text.find("\n[detector]") + 1;
+    const std::size_t from = text.find("\n[" + name + "]") + 1;
     return text.substr(from, text.find("\n[", from + 1) - from + 1);
+}
+
+/** The defaults' tracker, but a track unseen for 2 s is dropped. */
+std::string trackerSection() {
+    std::string tracker = defaultsSection("tracker");
+    const std::string timeout = "\ndrop_after_s = 20.0\n";
+    const std::size_t at = tracker.find(timeout);
+    if (at == std::string::npos)
+        throw std::runtime_error("defaults.ini: [tracker] drop_after_s is no longer 20.0");
+    return tracker.replace(at, timeout.size(), "\ndrop_after_s = 2\n");
 }
 
 std::string trackingSection(const std::string& source) {
     return "[tracking]\npeople_source = " + source +
-           "\nsensed_range = 5\nsensed_noise_sigma = 0.05\nexclude_from_map = true\n"
-           "[tracker]\naccel_noise = 0.02\nmeasurement_sigma = 0.02\ninitial_speed_sigma = 1\n"
-           "drop_after_s = 2\ndrop_after_misses_in_view = 3\ngate_chi2 = 9.21\nconfirm_hits = 3\n"
-           "tentative_drop_after_s = 1\nstatic_after_s = 5\nstatic_radius = 0.4\n"
-           "static_memory_s = 10\n" +
-           detectorSection();
+           "\nsensed_range = 5\nsensed_noise_sigma = 0.05\nexclude_from_map = true\n" +
+           trackerSection() + defaultsSection("detector");
 }
 
 TEST_F(SensedPeople, SensedTracksOnlyWhoIsSeenAndForgetsThemAfterTheTimeout) {

@@ -73,13 +73,16 @@ void PeopleTracker::noteStill(Track& t, double time, const Eigen::Vector2d& m) {
     }
 }
 
-void PeopleTracker::dropStaticClutter(double time) {
-    if (!(params_.staticAfter > 0))
-        return;
+void PeopleTracker::forgetOldClutter(double time) {
     clutter_.erase(
         std::remove_if(clutter_.begin(), clutter_.end(),
                        [&](const ClutterSpot& s) { return time - s.time > params_.staticMemory; }),
         clutter_.end());
+}
+
+void PeopleTracker::dropStaticClutter(double time) {
+    if (!(params_.staticAfter > 0))
+        return;
     tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
                                  [&](const Track& t) {
                                      // Measured at one spot all along, and predicted to
@@ -96,10 +99,9 @@ void PeopleTracker::dropStaticClutter(double time) {
                   tracks_.end());
 }
 
-bool PeopleTracker::inClutter(double time, const Eigen::Vector2d& p) const {
+bool PeopleTracker::inClutter(const Eigen::Vector2d& p) const {
     for (const ClutterSpot& s : clutter_)
-        if (time - s.time <= params_.staticMemory &&
-            (p - s.position).norm() <= params_.staticRadius)
+        if ((p - s.position).norm() <= params_.staticRadius)
             return true;
     return false;
 }
@@ -143,11 +145,12 @@ void PeopleTracker::associateAnonymous(double time,
 
 void PeopleTracker::update(double time, const std::vector<PersonMeasurement>& measurements,
                            const EmptyTest& seenEmpty) {
+    forgetOldClutter(time);
     std::vector<PersonMeasurement> anonymous;
     for (const PersonMeasurement& m : measurements) {
         if (m.id >= 0)
             updateOrStart(time, m.id, m);
-        else if (!inClutter(time, m.position))
+        else if (!inClutter(m.position))
             anonymous.push_back(m);
     }
     if (!anonymous.empty())

@@ -121,7 +121,10 @@ private:
     /** Measured at `m`: a track that stays put long enough becomes a clutter spot. */
     void noteStill(Track& t, double time, const Eigen::Vector2d& m);
     void dropStaticClutter(double time);
-    bool inClutter(double time, const Eigen::Vector2d& p) const;
+    /** Clutter spots older than staticMemory are forgotten. */
+    void forgetOldClutter(double time);
+    /** Within staticRadius of a clutter spot still remembered. */
+    bool inClutter(const Eigen::Vector2d& p) const;
 
     TrackerParams params_;
     std::vector<Track> tracks_;
