@@ -7,6 +7,7 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 namespace daep::mission {
@@ -68,7 +69,10 @@ void RawlogRecorder::addFrame(const mrpt::obs::CObservation3DRangeScan& depth, d
                               const Eigen::Vector3d& bodySize) {
     if (!impl_->out.is_open())
         return;
-    const auto stamp = mrpt::Clock::fromDouble(kRawlogEpoch + simTime);
+    // Epoch and offset apart: their sum as a double would round the time to 0.1 us steps.
+    const auto stamp =
+        mrpt::Clock::fromDouble(kRawlogEpoch) +
+        std::chrono::round<mrpt::Clock::duration>(std::chrono::duration<double>(simTime));
     auto arch = mrpt::serialization::archiveFrom(impl_->out);
 
     auto scan = mrpt::obs::CObservation3DRangeScan::Create(depth);

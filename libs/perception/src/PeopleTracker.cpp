@@ -10,6 +10,23 @@
 namespace daep::perception {
 namespace {
 
+/**
+ * Frame times replayed from a rawlog are the simulator's rounded to MRPT's 0.1 us clock ticks,
+ * so a span of whole frames can come out a hair either side of a threshold: spans are compared
+ * with this slack, and a threshold met at a frame is met on either clock.
+ */
+constexpr double kClockSlack = 1e-6;
+
+/** The span has lasted `limit` (at a frame exactly `limit` later, too). */
+bool spanReaches(double span, double limit) {
+    return span >= limit - kClockSlack;
+}
+
+/** The span has lasted longer than `limit` (not yet at a frame exactly `limit` later). */
+bool spanExceeds(double span, double limit) {
+    return span > limit + kClockSlack;
+}
+
 /** Cost of a pair outside the gate: larger than any sum of gated costs, so never preferred. */
 constexpr double kOutsideGate = 1e9;
 
@@ -74,10 +91,11 @@ void PeopleTracker::noteStill(Track& t, double time, const Eigen::Vector2d& m) {
 }
 
 void PeopleTracker::forgetOldClutter(double time) {
-    clutter_.erase(
-        std::remove_if(clutter_.begin(), clutter_.end(),
-                       [&](const ClutterSpot& s) { return time - s.time > params_.staticMemory; }),
-        clutter_.end());
+    clutter_.erase(std::remove_if(clutter_.begin(), clutter_.end(),
+                                  [&](const ClutterSpot& s) {
+                                      return spanExceeds(time - s.time, params_.staticMemory);
+                                  }),
+                   clutter_.end());
 }
 
 void PeopleTracker::dropStaticClutter(double time) {
@@ -88,7 +106,7 @@ void PeopleTracker::dropStaticClutter(double time) {
                                      // Measured at one spot all along, and predicted to
                                      // stay there (a walker out of view is predicted on).
                                      if (!t.anonymous ||
-                                         time - t.stillSince < params_.staticAfter ||
+                                         !spanReaches(time - t.stillSince, params_.staticAfter) ||
                                          (t.filter.predict(time).mean - t.stillAt).norm() >
                                              params_.staticRadius)
                                          return false;
@@ -177,7 +195,7 @@ void PeopleTracker::dropStale(double time) {
                                  [&](const Track& t) {
                                      const double limit = confirmed(t) ? params_.dropAfter
                                                                        : params_.tentativeDropAfter;
-                                     return time - t.lastSeen > limit;
+                                     return spanExceeds(time - t.lastSeen, limit);
                                  }),
                   tracks_.end());
 }
