@@ -6,11 +6,13 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -250,7 +252,8 @@ TEST(RawlogSource, KinectFrameFromMrptDatasetsIsMapped) {
     if (!fs::exists(kKinect))
         GTEST_SKIP() << kKinect << " missing (Debian package mrpt-common)";
     const fs::path out = freshDir("kinect");
-    RawlogMission mission(replayConfig(kKinect), out, nullptr);
+    // Recorded data without true people: the people come from the detector.
+    RawlogMission mission(replayConfig(kKinect, {"tracking.people_source=detected"}), out, nullptr);
     const auto s = mission.run();
     EXPECT_EQ(mission.frames(), 1u);
     EXPECT_EQ(s.iterations, 1);
@@ -338,6 +341,18 @@ TEST(RawlogSource, BadInputsAreInputErrorsNamingTheFileOrKey) {
               }).find("source"),
               std::string::npos);
     EXPECT_FALSE(RawlogMission::selectedBy(ExperimentConfig::fromFile(kTinyRoom)));
+
+    // People from ground truth need PERSON_<i> poses; sensed people need the simulator.
+    if (fs::exists(kKinect)) {
+        const std::string noPeople = inputErrorOf([&] { make(replayConfig(kKinect)); });
+        EXPECT_NE(noPeople.find(kKinect), std::string::npos) << noPeople;
+        EXPECT_NE(noPeople.find("people_source = ground_truth"), std::string::npos) << noPeople;
+    }
+    const std::string sensed =
+        inputErrorOf([&] { make(replayConfig(kDataset, {"tracking.people_source=sensed"})); });
+    EXPECT_NE(sensed.find(kDataset), std::string::npos) << sensed;
+    EXPECT_NE(sensed.find("people_source = sensed needs the simulator"), std::string::npos)
+        << sensed;
 }
 
 /** A rawlog cut short fails while replaying, naming the file; the outputs so far are kept. */
@@ -354,3 +369,119 @@ TEST(RawlogSource, TruncatedRawlogIsAnErrorNamingTheFile) {
 }
 
 }  // namespace
+
+/**
+ * One frame pipeline: a simulated DAEP run with people from its own camera, recorded and then
+ * replayed with the same settings, tracks the same people and builds the same map, byte for
+ * byte; the replayed plans are made with those tracks.
+ */
+TEST(RawlogSource, RecordedRunWithDetectedPeopleReplaysToTheSamePeopleAndMap) {
+    const fs::path sim = freshDir("detsim"), replay = freshDir("detreplay");
+    const std::vector<std::string> same = {"experiment.planner=daep",
+                                           "tracking.people_source=detected"};
+    std::vector<std::string> simSettings = {"experiment.max_time_s=14", "output.rawlog=true",
+                                            "output.scene=false"};
+    simSettings.insert(simSettings.end(), same.begin(), same.end());
+    daep::mission::Mission(ExperimentConfig::fromFile(kTinyRoom, simSettings), sim.string(),
+                           nullptr)
+        .run();
+
+    std::vector<std::string> replaySettings = {"rawlog.world=tiny_room.yaml"};
+    replaySettings.insert(replaySettings.end(), same.begin(), same.end());
+    RawlogMission mission(replayConfig((sim / "run.rawlog").string(), replaySettings), replay,
+                          nullptr);
+    mission.run();
+
+    const auto tracks = lines(sim / "people.csv");
+    std::size_t tracked = 0;
+    for (std::size_t i = 1; i < tracks.size(); ++i)
+        tracked += fields(tracks[i]).size() == 7u;
+    std::cout << "detected run: " << tracked << " track rows in people.csv\n";
+    EXPECT_GE(tracked, 5u);  // the walker was found and tracked
+    EXPECT_EQ(readBytes(replay / "people.csv"), readBytes(sim / "people.csv"));
+    EXPECT_EQ(readBytes(replay / "map.bt"), readBytes(sim / "map.bt"));
+    EXPECT_EQ(readBytes(replay / "trajectory.csv"), readBytes(sim / "trajectory.csv"));
+}
+
+/** The dataset's first `objects` objects with each drone pose given by `replace`. */
+template <typename F>
+std::string withDronePoses(const std::string& name, std::size_t objects, F&& replace) {
+    auto list = readObjects(kDataset, objects);
+    for (auto& o : list) {
+        auto pose = std::dynamic_pointer_cast<mrpt::obs::CObservationRobotPose>(o);
+        if (pose && pose->sensorLabel == "DRONE_POSE")
+            o = replace(*pose);
+    }
+    const std::string path = (freshDir(name) / "poses.rawlog").string();
+    writeObjects(path, list);
+    return path;
+}
+
+/** Poses the way MRPT logs them: CObservationOdometry (x, y, yaw) serves like a robot pose. */
+TEST(RawlogSource, OdometryGivesTheRobotPoseLikeARobotPoseObservation) {
+    const auto flat = [](const mrpt::obs::CObservationRobotPose& p) {
+        auto q = mrpt::obs::CObservationRobotPose::Create(p);
+        q->pose.mean = mrpt::poses::CPose3D(p.pose.mean.x(), p.pose.mean.y(), 0.0,
+                                            p.pose.mean.yaw(), 0.0, 0.0);
+        return CSerializable::Ptr(q);
+    };
+    const auto odometry = [](const mrpt::obs::CObservationRobotPose& p) {
+        auto o = mrpt::obs::CObservationOdometry::Create();
+        o->sensorLabel = p.sensorLabel;
+        o->timestamp = p.timestamp;
+        o->odometry = mrpt::poses::CPose2D(p.pose.mean.x(), p.pose.mean.y(), p.pose.mean.yaw());
+        return CSerializable::Ptr(o);
+    };
+    const std::string a = withDronePoses("flat", 60, flat);
+    const std::string b = withDronePoses("odometry", 60, odometry);
+    const fs::path outA = freshDir("flatout"), outB = freshDir("odoout");
+    RawlogMission(replayConfig(a, {"rawlog.world=tiny_room.yaml"}), outA, nullptr).run();
+    RawlogMission(replayConfig(b, {"rawlog.world=tiny_room.yaml"}), outB, nullptr).run();
+    EXPECT_EQ(lines(outB / "trajectory.csv").size(), 21u);  // 20 frames in 60 objects
+    EXPECT_EQ(readBytes(outA / "trajectory.csv"), readBytes(outB / "trajectory.csv"));
+    EXPECT_EQ(readBytes(outA / "map.bt"), readBytes(outB / "map.bt"));
+}
+
+/** Robot poses under another label than pose_label: exit 1 naming both, not a silent identity. */
+TEST(RawlogSource, PosesUnderAnotherLabelAreAnErrorNamingTheLabels) {
+    const std::string relabelled =
+        withDronePoses("gps", 30, [](const mrpt::obs::CObservationRobotPose& p) {
+            auto q = mrpt::obs::CObservationRobotPose::Create(p);
+            q->sensorLabel = "GPS";
+            return CSerializable::Ptr(q);
+        });
+    const std::string e = inputErrorOf(
+        [&] { RawlogMission(replayConfig(relabelled), freshDir("gpsout"), nullptr).run(); });
+    EXPECT_NE(e.find(relabelled), std::string::npos) << e;
+    EXPECT_NE(e.find("no robot pose labelled 'DRONE_POSE'"), std::string::npos) << e;
+    EXPECT_NE(e.find("labelled 'GPS'"), std::string::npos) << e;
+}
+
+/** A rawlog without any pose (MRPT's Kinect frame) maps at the identity pose, and says so. */
+TEST(RawlogSource, NoPoseAtAllIsMappedAtTheIdentityWithANote) {
+    if (!fs::exists(kKinect))
+        GTEST_SKIP() << kKinect << " missing (Debian package mrpt-common)";
+    std::ostringstream log;
+    RawlogMission(replayConfig(kKinect, {"tracking.people_source=detected"}), freshDir("note"),
+                  &log)
+        .run();
+    EXPECT_NE(log.str().find("note: " + kKinect + ": no robot pose"), std::string::npos)
+        << log.str();
+    EXPECT_NE(log.str().find("identity pose"), std::string::npos) << log.str();
+}
+
+/** [rawlog] realtime = true plays at the rawlog's pace: 1.8 s of frames take at least 1.8 s. */
+TEST(RawlogSource, RealtimePlaybackKeepsTheRawlogsPace) {
+    const std::string first =
+        withDronePoses("pace", 30, [](const mrpt::obs::CObservationRobotPose& p) {
+            return CSerializable::Ptr(mrpt::obs::CObservationRobotPose::Create(p));
+        });  // 10 frames, 0 .. 1.8 s
+    const auto t0 = std::chrono::steady_clock::now();
+    RawlogMission mission(replayConfig(first, {"rawlog.realtime=true"}), freshDir("paceout"),
+                          nullptr);
+    mission.run();
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(mission.frames(), 10u);
+    EXPECT_GE(wall, 1.8);
+}

@@ -10,14 +10,14 @@
 #include <ostream>
 
 #include "ComponentParams.h"
-#include "RawlogReader.h"
+#include "FrameStep.h"
+#include "StageClock.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/PeopleInput.h"
-#include "daep/perception/PeopleDetector.h"
-#include "daep/perception/PeopleTracker.h"
+#include "daep/mission/RawlogSource.h"
 
 namespace daep::mission {
 namespace {
@@ -167,26 +167,26 @@ struct FrameScore {
 
 class Evaluator {
 public:
-    Evaluator(const ExperimentConfig& config, const DetectionEvalOptions& options)
+    Evaluator(const ExperimentConfig& config, const DetectionEvalOptions& options,
+              mapping::ExplorationMap& map, const std::string& sourceName)
         : options_(options),
           bodySize_(loadPeopleParams(config.config()).bodySize),
-          detector_(loadDetectorParams(config.config())),
-          tracker_(loadTrackerParams(config.config())) {}
+          people_(detectedPeople(config), 0),
+          step_(stepParts(map, sourceName)) {}
 
-    FrameScore scoreFrame(const RawlogFrame& frame, double t, mapping::ExplorationMap& map) {
-        const auto detections = detector_.detect(*frame.depth, frame.robot, map);
-        tracker_.update(t, detections, seenEmptyIn({frame.depth.get(), frame.robot}, bodySize_));
-        map.insertObservation(*frame.depth, frame.robot);
+    FrameScore scoreFrame(const Frame& frame) {
+        step_.process(frame);
+        const std::vector<perception::PersonMeasurement>& detections = people_.detections();
         const View view(*frame.depth, frame.robot);
         std::vector<Eigen::Vector2d> truth;
         std::vector<bool> eligible;
         FrameScore f;
-        for (const auto& [index, pose] : frame.people) {
-            truth.push_back(pose.position.head<2>());
+        for (const world::PersonState& person : *frame.truePeople) {
+            truth.push_back(person.position);
             const bool inRange = view.horizontalDistance(truth.back()) <= options_.range;
-            const Body body{{pose.position.x(), pose.position.y(), 0.5 * bodySize_.z()},
+            const Body body{{person.position.x(), person.position.y(), 0.5 * bodySize_.z()},
                             0.5 * bodySize_,
-                            pose.yaw};
+                            person.heading};
             eligible.push_back(inRange && visibleFraction(*frame.depth, view, body) >=
                                               options_.minVisibleFraction);
             score_.occludedOrTruncated += inRange && !eligible.back();
@@ -204,7 +204,7 @@ public:
             f.falsePositives += who < 0;
         }
         f.eligible = std::size_t(std::count(eligible.begin(), eligible.end(), true));
-        scoreTracks(view, t, truth, f);
+        scoreTracks(view, frame.time, truth, f);
         add(f);
         return f;
     }
@@ -214,7 +214,7 @@ public:
 private:
     void scoreTracks(const View& view, double t, const std::vector<Eigen::Vector2d>& truth,
                      FrameScore& f) {
-        for (const perception::PersonForecast& track : tracker_.forecasts()) {
+        for (const perception::PersonForecast& track : people_.forecasts()) {
             const Eigen::Vector2d p = track.at(t).mean;
             if (view.horizontalDistance(p) > options_.range)
                 continue;
@@ -237,10 +237,29 @@ private:
         score_.truePositives += f.detections - f.falsePositives;
     }
 
+    /** The [tracking] settings with the people found in the depth frames. */
+    static PeopleInputParams detectedPeople(const ExperimentConfig& config) {
+        PeopleInputParams p = PeopleInputParams::fromConfig(config.config());
+        p.source = "detected";
+        return p;
+    }
+
+    /** The frame loop's step: detection against the map before the frame, then the map. */
+    FrameStep::Parts stepParts(mapping::ExplorationMap& map, const std::string& sourceName) {
+        FrameStep::Parts p;
+        p.map = &map;
+        p.stages = &stages_;
+        p.people = &people_;
+        p.bodySize = bodySize_;
+        p.sourceName = sourceName;
+        return p;
+    }
+
     DetectionEvalOptions options_;
     Eigen::Vector3d bodySize_;
-    perception::PeopleDetector detector_;
-    perception::PeopleTracker tracker_;
+    PeopleInput people_;
+    StageClock stages_;
+    FrameStep step_;
     DetectionScore score_;
 };
 
@@ -257,27 +276,28 @@ Aabb mapBoxAround(const Eigen::Vector3d& p) {
 DetectionScore evaluateDetection(const ExperimentConfig& config, const std::string& rawlogPath,
                                  const DetectionEvalOptions& options, std::ostream* frameCsv) {
     const ConfigReader r(config.config(), "rawlog", config.source());
-    RawlogReader reader(rawlogPath,
+    RawlogSource source(rawlogPath,
                         config.config().read_string("rawlog", "sensor_label", "", false),
                         r.requireString("pose_label"));
-    RawlogFrame frame;
-    if (!reader.next(frame))
+    Frame frame;
+    if (!source.next(frame))
         throw InputError(rawlogPath + ": no depth frames");
-    if (frame.people.empty())
+    if (!frame.truePeople)
         throw InputError(rawlogPath +
                          ": no PERSON_<i> poses (record a dynamic run with output.rawlog = true)");
-    Evaluator evaluator(config, options);
     mapping::ExplorationMap map(loadMapParams(config.config()), mapBoxAround(frame.robot.position));
-    const double firstStamp = frame.stamp;
+    Evaluator evaluator(config, options, map, source.name());
     if (frameCsv)
         *frameCsv << "t,eligible,found,detections,false_positives,confirmed_tracks\n";
     do {
-        const double t = frame.stamp - firstStamp;
-        const FrameScore f = evaluator.scoreFrame(frame, t, map);
+        if (!frame.truePeople)
+            throw InputError(rawlogPath + ": the depth frame at t = " + std::to_string(frame.time) +
+                             " s has no PERSON_<i> poses");
+        const FrameScore f = evaluator.scoreFrame(frame);
         if (frameCsv)
-            *frameCsv << t << ',' << f.eligible << ',' << f.found << ',' << f.detections << ','
-                      << f.falsePositives << ',' << f.tracks << '\n';
-    } while (reader.next(frame));
+            *frameCsv << frame.time << ',' << f.eligible << ',' << f.found << ',' << f.detections
+                      << ',' << f.falsePositives << ',' << f.tracks << '\n';
+    } while (source.next(frame));
     return evaluator.score();
 }
 

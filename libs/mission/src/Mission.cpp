@@ -15,11 +15,15 @@
 #include <octomap/OcTree.h>
 
 #include "ComponentParams.h"
+#include "FrameStep.h"
 #include "MemoryLog.h"
 #include "MissionSetup.h"
 #include "Outputs.h"
+#include "PeopleCsv.h"
+#include "PlannerDriver.h"
 #include "RawlogRecorder.h"
 #include "SceneExport.h"
+#include "SimulatorSource.h"
 #include "StageClock.h"
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
@@ -42,88 +46,78 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/** Collision checks must not skip through a person: bound the simulation step. */
-constexpr double kMaxStep = 0.05;
 constexpr double kEps = 1e-9;
 
 double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-const char* statusName(const planning::Plan& plan) {
-    if (plan.status == planning::Plan::Status::Finished)
-        return "finished";
-    return plan.waypoints.empty() && plan.waitSeconds > 0 ? "wait" : "path";
-}
-
-std::string formatPoint(const Eigen::Vector3d& p) {
-    std::ostringstream o;
-    o << std::fixed << std::setprecision(2) << "(" << p.x() << ", " << p.y() << ", " << p.z()
-      << ")";
-    return o.str();
-}
-
 }  // namespace
 
 struct Mission::Impl {
     Impl(const ExperimentConfig& config, const std::string& outputDir, std::ostream* logStream)
-        : configForStart(&config.config()),
+        : configForReach(&config.config()),
           settings(loadSettings(config)),
-          world(loadWorld(settings, config.source())),
-          people(world.people, loadPeopleParams(config.config())),
-          caster(world),
-          statics(world),
-          camera(loadCameraParams(config.config())),
-          drone(loadDroneParams(config.config()), startPose()),
-          monitor(drone.params().boxSize, people.params().bodySize, &statics),
-          map(loadMapParams(config.config()), world.explorationBox),
-          planner(planning::createPlanner(settings.plannerName, config.config(),
-                                          settings.seed * 0x9E3779B97F4A7C15ull + 1)),
-          noiseRng(settings.seed),
+          sim(loadWorld(settings, config.source()), config.config(), settings.start, settings.climb,
+              settings.seed, &stages),
+          map(loadMapParams(config.config()), sim.world().explorationBox),
           peopleInput(PeopleInputParams::fromConfig(config.config()),
                       settings.seed * 0xD1B54A32D192ED03ull + 7),
           log(logStream),
           recorder(outputDir),
           outputs(loadOutputParams(config.config())),
           scene(outputs, outputDir, logStream),
-          memory(recorder.path("memory.csv"), outputs.memoryEvery) {
-        checkStartIsFree();
+          memory(recorder.path("memory.csv"), outputs.memoryEvery),
+          driver(planning::createPlanner(settings.plannerName, config.config(),
+                                         settings.seed * 0x9E3779B97F4A7C15ull + 1),
+                 driverSetup()) {
         // People the planner does not keep out of the map enter it as occupied cells.
-        map.setPeopleMapped(!world.people.empty() &&
-                            !(planner->usesPeople() && peopleInput.excludesFromMap()));
-        framePeriod = 1.0 / camera.params().rateHz;
+        map.setPeopleMapped(!sim.world().people.empty() &&
+                            !(driver.usesPeople() && peopleInput.excludesFromMap()));
         if (outputs.rawlog)
             rawlog = std::make_unique<RawlogRecorder>(recorder.path("run.rawlog"));
+        if (driver.usesPeople() && outputs.peopleCsv)
+            peopleCsv = std::make_unique<PeopleCsv>(recorder.path("people.csv"));
+        frameStep.emplace(stepParts());
         nextScene = outputs.sceneEvery;
     }
 
-    /** The drone rests on the start point: its box's bottom face is at the start's z. */
-    FlatPose startPose() const {
-        FlatPose p;
-        p.position = world.starts[settings.start];
-        p.position.z() += 0.5 * loadDroneParams(*configForStart).boxSize.z();
-        return p;
+    PlannerDriver::Setup driverSetup() {
+        PlannerDriver::Setup d;
+        d.map = &map;
+        d.explorationBox = sim.world().explorationBox;
+        d.motion.speed = sim.drone().params().speed;
+        d.motion.yawRate = sim.drone().params().yawRate;
+        d.droneSize = sim.drone().params().boxSize;
+        d.personSize = sim.people().params().bodySize;
+        d.people = &peopleInput;
+        d.fixedTime = settings.planningTime == "fixed";
+        d.fixedSeconds = settings.planningFixed;
+        d.deadlineSeconds = settings.planningDeadline;
+        d.recorder = &recorder;
+        d.stages = &stages;
+        return d;
     }
 
-    void checkStartIsFree() const {
-        const Eigen::Vector3d given = world.starts[settings.start];
-        const Eigen::Vector3d s = startPose().position;
-        const Eigen::Vector3d top = s + Eigen::Vector3d(0, 0, settings.climb);
-        const std::string which = world.sourceFile + ": start " + std::to_string(settings.start) +
-                                  " " + formatPoint(given);
-        for (double f = 0; f <= 1.0 + kEps; f += 0.1) {
-            const Eigen::Vector3d p = s + f * (top - s);
-            if (statics.overlaps(p, drone.params().boxSize, 0.0))
-                throw InputError(which + ": the drone box at " + formatPoint(p) +
-                                 " (take-off) is inside static geometry");
+    FrameStep::Parts stepParts() {
+        FrameStep::Parts p;
+        p.map = &map;
+        p.recorder = &recorder;
+        p.stages = &stages;
+        if (driver.usesPeople()) {
+            p.people = &peopleInput;
+            p.peopleOutOfMap = true;
         }
-        if (!world.explorationBox.contains(top))
-            throw InputError(which + ": after the climb the drone is outside the exploration box");
+        p.bodySize = sim.people().params().bodySize;
+        p.peopleCsv = peopleCsv.get();
+        p.rawlog = rawlog.get();
+        p.sourceName = sim.name();
+        return p;
     }
 
     /** Known volume over the world's exploration volume (Cafe declares 510 m^3, as the paper). */
     double coveragePercent() const {
-        return 100.0 * map.knownVolumeInBox() / world.explorationVolume();
+        return 100.0 * map.knownVolumeInBox() / sim.world().explorationVolume();
     }
 
     /** The most coverage this world and start allow, on the map's grid. */
@@ -131,71 +125,36 @@ struct Mission::Impl {
         world::ReachParams p;
         p.resolution = map.resolution();
         p.robotRadius =
-            requireNonNegative(ConfigReader(*configForStart, "planning"), "robot_radius");
+            requireNonNegative(ConfigReader(*configForReach, "planning"), "robot_radius");
         p.climb = settings.climb;
-        return world::computeReachableVolume(world, world.starts[settings.start], p)
+        return world::computeReachableVolume(sim.world(), sim.world().starts[settings.start], p)
             .reachablePercent;
     }
 
+    double now() const { return sim.time(); }
     bool exploring() const { return exploreStart >= 0; }
-    double explorationTime() const { return exploring() ? t - exploreStart : 0.0; }
+    double explorationTime() const { return exploring() ? now() - exploreStart : 0.0; }
     bool timeUp() const { return exploring() && explorationTime() >= settings.maxTime - kEps; }
     bool stopping() const { return timeUp() || (stopFlag && *stopFlag); }
 
-    void captureFrame() {
-        render();
-        if (planner->usesPeople()) {
-            std::vector<mapping::PersonFootprint> footprints;
-            {
-                const auto timed = stages.time(Stage::People);
-                observePeople();  // before the map takes the frame: the detector needs the old map
-                footprints = peopleInput.mapFootprints(t, people.params().bodySize);
-            }
-            const auto timed = stages.time(Stage::Map);
-            map.insertObservation(frame, drone.pose(), footprints);
-        } else {
-            const auto timed = stages.time(Stage::Map);
-            map.insertObservation(frame, drone.pose());
-        }
-        record();
-    }
-
-    void render() {
-        const auto timed = stages.time(Stage::Render);
-        if (!world.people.empty())
-            caster.setPeople(people.states(), people.params().bodySize);
-        camera.render(caster, drone.pose(), t, noiseRng, frame);
-    }
-
-    void record() {
-        const auto timed = stages.time(Stage::Recording);
-        recorder.addPose(t, drone.pose());
-        if (rawlog)
-            rawlog->addFrame(frame, t, drone.pose(), people.states(), people.params().bodySize);
-        if (trajectory.empty() || (trajectory.back() - drone.pose().position).norm() > 0.05)
-            trajectory.push_back(drone.pose().position);
-        if (outputs.scene && outputs.sceneEvery > 0 && t + kEps >= nextScene) {
+    /** The frame just taken through the one per-frame step, then the scene when one is due. */
+    void processFrame() {
+        const CameraSight sight = sim.sight();
+        frameStep->process(sim.frame(), &sight);
+        if (outputs.scene && outputs.sceneEvery > 0 && now() + kEps >= nextScene) {
             writeScene();
             nextScene += outputs.sceneEvery;
         }
     }
 
-    void observePeople() {
-        if (peopleInput.detects())
-            peopleInput.detect(t, frame, drone.pose(), map, people.params().bodySize);
-        else
-            peopleInput.observe(t, people.states(), caster, camera.sensorPose(drone.pose()),
-                                camera.params(), people.params().bodySize, {&frame, drone.pose()});
-    }
-
     void writeScene() {
         SceneContent c;
         c.map = &map;
-        c.trajectory = &trajectory;
-        c.tree = &lastTree;
-        c.people = people.states();
-        c.bodySize = people.params().bodySize;
-        c.drone = drone.pose();
+        c.trajectory = &frameStep->trajectory();
+        c.tree = &driver.lastTree();
+        c.people = sim.people().states();
+        c.bodySize = sim.people().params().bodySize;
+        c.drone = sim.drone().pose();
         scene.write(c);
     }
 
@@ -205,8 +164,8 @@ struct Mission::Impl {
             s.time = nextSample;
             s.coveragePercent = coveragePercent();
             s.pathLength = pathLength;
-            s.planningTime = planningCharged;
-            s.collisions = monitor.personCollisions();
+            s.planningTime = driver.chargedSeconds();
+            s.collisions = sim.monitor().personCollisions();
             recorder.addSample(s);
             nextSample += settings.sampleEvery;
             printProgressIfDue(s);
@@ -222,54 +181,39 @@ struct Mission::Impl {
         *log << "[t " << std::fixed << std::setprecision(0) << std::setw(5) << s.time
              << " s] coverage " << std::setprecision(1) << std::setw(5) << s.coveragePercent
              << " %  path " << std::setw(6) << s.pathLength << " m  plans " << std::setw(4)
-             << iterations << "  collisions " << s.collisions << std::endl;
+             << driver.iterations() << "  collisions " << s.collisions << std::endl;
     }
 
     /**
      * Advances the world by dt (or until the drone reaches its goal when flying); returns true
      * when the drone reached its goal.
      */
-    bool advance(double dt, bool flying) { return advanceUntil(t + dt, flying); }
+    bool advance(double dt, bool flying) { return advanceUntil(now() + dt, flying); }
 
     /**
      * Advances the world to `end`, or until the drone reaches its goal when flying (true), or,
      * while hovering with watchingHover, until the planner asks to evade (pendingEvasion).
      */
     bool advanceUntil(double end, bool flying) {
-        while (t < end - kEps && !stopping()) {
-            double h = std::min({end - t, nextFrame - t, kMaxStep});
+        while (now() < end - kEps && !stopping()) {
+            double limit = end - now();
             if (exploring())
-                h = std::min(h, settings.maxTime - explorationTime());
-            h = std::max(h, 0.0);
-            bool reached = false;
-            std::optional<StageClock::Scope> worldTime(std::in_place, stages, Stage::World);
-            if (flying) {
-                const Eigen::Vector3d before = drone.pose().position;
-                const double used = drone.advance(h);
-                reached = !drone.hasGoal();
-                h = used;
-                if (exploring())
-                    pathLength += (drone.pose().position - before).norm();
-            }
-            people.advance(h);
-            t += h;
-            const std::size_t episodes = monitor.events().size();
-            monitor.update(t, drone.pose(), people.states());
-            for (std::size_t e = episodes; e < monitor.events().size(); ++e)
-                collisionTracked.push_back(trackedAtCollision(monitor.events()[e].personIndex));
-            worldTime.reset();
-            bool captured = false;
-            if (t >= nextFrame - kEps) {
-                captureFrame();
-                nextFrame += framePeriod;
-                captured = true;
-            }
+                limit = std::min(limit, settings.maxTime - explorationTime());
+            const std::size_t episodes = sim.monitor().events().size();
+            const SimulatorSource::Step step = sim.step(limit, flying);
+            if (flying && exploring())
+                pathLength += step.moved;
+            for (std::size_t e = episodes; e < sim.monitor().events().size(); ++e)
+                collisionTracked.push_back(
+                    trackedAtCollision(sim.monitor().events()[e].personIndex));
+            if (step.frameTaken)
+                processFrame();
             recordDueSamples();
-            if (reached)
+            if (step.reached)
                 return true;
-            if (captured && !flying && watchingHover && planner->usesPeople()) {
+            if (step.frameTaken && !flying && watchingHover && driver.usesPeople()) {
                 const auto timed = stages.time(Stage::Checks);
-                pendingEvasion = planner->evasion(context(), hoverSafeUntil);
+                pendingEvasion = driver.planner().evasion(context(), hoverSafeUntil);
                 if (pendingEvasion)
                     return false;
             }
@@ -285,9 +229,9 @@ struct Mission::Impl {
     bool hoverUntil(double end) {
         // Hovering must stay safe until what is planned meanwhile can act on it: the end of
         // this hover, another as long (a plan dropped as stale), and a frame.
-        hoverSafeUntil = end + (end - t) + framePeriod;
+        hoverSafeUntil = end + (end - now()) + sim.framePeriod();
         bool evaded = false;
-        while (t < end - kEps && !stopping()) {
+        while (now() < end - kEps && !stopping()) {
             watchingHover = true;
             advanceUntil(end, false);
             watchingHover = false;
@@ -303,25 +247,25 @@ struct Mission::Impl {
 
     /** Flies to the goal; returns false when the planner aborted the flight. */
     bool flyTo(const FlatPose& goal, const planning::Plan* plan = nullptr, std::size_t index = 0) {
-        drone.setGoal(goal);
+        sim.drone().setGoal(goal);
         bool aborted = false;
-        while (drone.hasGoal() && !stopping() && !aborted) {
+        while (sim.drone().hasGoal() && !stopping() && !aborted) {
             const std::uint64_t mapBefore = map.revision();
-            advance(framePeriod, true);
-            const bool recheck = map.revision() != mapBefore || planner->usesPeople();
-            if (plan && drone.hasGoal() && recheck) {
+            advance(sim.framePeriod(), true);
+            const bool recheck = map.revision() != mapBefore || driver.usesPeople();
+            if (plan && sim.drone().hasGoal() && recheck) {
                 const auto timed = stages.time(Stage::Checks);
-                aborted = !planner->keepFlying(context(), *plan, index);
+                aborted = !driver.planner().keepFlying(context(), *plan, index);
             }
         }
-        drone.clearGoal();
+        sim.drone().clearGoal();
         return !aborted;
     }
 
     void takeOffAndLookAround() {
-        captureFrame();
-        nextFrame = framePeriod;
-        FlatPose goal = drone.pose();
+        sim.takeFirstFrame();
+        processFrame();
+        FlatPose goal = sim.drone().pose();
         goal.position.z() += settings.climb;
         flyTo(goal);
         for (int quarter = 1; quarter <= 4; ++quarter) {
@@ -338,31 +282,16 @@ struct Mission::Impl {
 
     /** Whether a track lay on the person (within a body's width) as the collision began. */
     int trackedAtCollision(int person) const {
-        if (person < 0 || !planner->usesPeople())
+        if (person < 0 || !driver.usesPeople())
             return -1;
-        const Eigen::Vector2d at = people.states()[static_cast<std::size_t>(person)].position;
+        const Eigen::Vector2d at = sim.people().states()[static_cast<std::size_t>(person)].position;
         for (const perception::PersonForecast& f : peopleInput.forecasts())
-            if ((f.at(t).mean - at).norm() < people.params().bodySize.x())
+            if ((f.at(now()).mean - at).norm() < sim.people().params().bodySize.x())
                 return 1;
         return 0;
     }
 
-    planning::PlanningContext context() const {
-        planning::PlanningContext ctx;
-        ctx.time = t;
-        ctx.pose = drone.pose();
-        ctx.map = &map;
-        ctx.explorationBox = world.explorationBox;
-        ctx.motion.speed = drone.params().speed;
-        ctx.motion.yawRate = drone.params().yawRate;
-        ctx.droneSize = drone.params().boxSize;
-        ctx.personSize = people.params().bodySize;
-        if (planner->usesPeople()) {
-            ctx.people = &peopleInput.forecasts();
-            ctx.peopleFromCamera = peopleInput.fromCamera();
-        }
-        return ctx;
-    }
+    planning::PlanningContext context() const { return driver.context(now(), sim.drone().pose()); }
 
     /**
      * One plan, made from the state when planning began; the world goes on for the time it
@@ -371,36 +300,22 @@ struct Mission::Impl {
      * safe against what the frames taken meanwhile predict, its times counted from now.
      */
     std::optional<planning::Plan> planOnce() {
-        planning::PlanningContext ctx = context();
-        const auto t0 = Clock::now();
-        if (settings.planningTime == "measured")  // wall time: never where runs must repeat
-            ctx.deadline = planning::PlanningDeadline::in(settings.planningDeadline);
-        planning::Plan plan = [&] {
-            const auto timed = stages.time(Stage::Planning);
-            return planner->plan(ctx);
-        }();
-        const double wall = secondsSince(t0);
-        if (!plan.tree.empty())
-            lastTree = plan.tree;
-        const double charged = settings.planningTime == "fixed" ? settings.planningFixed : wall;
-        ++iterations;
-        planningCharged += charged;
-        recorder.addPlan(explorationTime(), charged, wall, statusName(plan), plan.gain,
-                         static_cast<int>(plan.waypoints.size()), plan.reason);
-        const double framesBefore = nextFrame;
-        if (hoverUntil(t + charged))
+        PlannerDriver::Call made = driver.planFlight(now(), sim.drone().pose(), explorationTime());
+        const double framesBefore = sim.nextFrameTime();
+        if (hoverUntil(now() + made.chargedSec))
             return std::nullopt;
-        const bool newFrames = nextFrame != framesBefore;
-        if (newFrames && planner->usesPeople() && !plan.waypoints.empty() && !startsSafely(plan)) {
+        const bool newFrames = sim.nextFrameTime() != framesBefore;
+        if (newFrames && driver.usesPeople() && !made.plan.waypoints.empty() &&
+            !startsSafely(made.plan)) {
             ++stalePlans;
             return std::nullopt;
         }
-        return plan;
+        return std::move(made.plan);
     }
 
     bool startsSafely(const planning::Plan& plan) {
         const auto timed = stages.time(Stage::Checks);
-        return planner->startsSafely(context(), plan);
+        return driver.planner().startsSafely(context(), plan);
     }
 
     void explore() {
@@ -416,7 +331,7 @@ struct Mission::Impl {
                 return;
             }
             if (plan.waypoints.empty() && plan.waitSeconds > 0) {
-                hoverUntil(t + plan.waitSeconds);  // the planner waits for people to pass
+                hoverUntil(now() + plan.waitSeconds);  // the planner waits for people to pass
                 continue;
             }
             if (plan.waypoints.empty()) {
@@ -440,6 +355,7 @@ struct Mission::Impl {
     }
 
     eval::RunSummary summarize(double wallTime) {
+        const sim::CollisionMonitor& monitor = sim.monitor();
         for (std::size_t i = 0; i < monitor.events().size(); ++i) {
             const sim::CollisionEvent& e = monitor.events()[i];
             recorder.addCollision(e.personIndex, e.start, e.end, collisionTracked[i]);
@@ -452,12 +368,12 @@ struct Mission::Impl {
         s.reachablePercent = reachablePercent();
         s.explorationTime = explorationTime();
         s.pathLength = pathLength;
-        s.planningTime = planningCharged;
+        s.planningTime = driver.chargedSeconds();
         s.planMsMedian = eval::median(ms);
         s.planMsP95 = eval::percentile(ms, 95);
         s.collisions = monitor.personCollisions();
         s.staticCollisions = monitor.staticCollisions();
-        s.iterations = iterations;
+        s.iterations = driver.iterations();
         s.abortedPaths = abortedPaths;
         s.hoverEvasions = hoverEvasions;
         s.stalePlans = stalePlans;
@@ -465,9 +381,9 @@ struct Mission::Impl {
         s.endReason = endReason;
         s.wallTime = wallTime;
         s.knownVolume = map.knownVolumeInBox();
-        s.boxVolume = world.explorationVolume();
+        s.boxVolume = sim.world().explorationVolume();
         s.explorationStart = exploreStart;
-        s.labels = {{"world", world.name},
+        s.labels = {{"world", sim.world().name},
                     {"mode", settings.mode},
                     {"planner", settings.plannerName},
                     {"start", std::to_string(settings.start)},
@@ -476,46 +392,52 @@ struct Mission::Impl {
         return s;
     }
 
-    const mrpt::config::CConfigFileBase* configForStart;
+    /** Closes the streams and writes what is written at the end of a run. */
+    void writeOutputs(const eval::RunSummary& summary) {
+        memory.addFinal(explorationTime(), map.knownVolumeInBox(), map.octree().size());
+        recorder.flush();
+        if (peopleCsv)
+            peopleCsv->flush();
+        recorder.writeSummary(summary);
+        recorder.writeTiming(summary.wallTime, now(), stages.report(summary.wallTime));
+        recorder.writeCollisions();
+        if (!map.writeBinary(recorder.path("map.bt")))
+            throw std::runtime_error("cannot write " + recorder.path("map.bt"));
+        if (rawlog)
+            rawlog->close();
+        if (outputs.scene)
+            writeScene();
+        memory.writePlot(recorder.path("memory.png"),
+                         "Memory: " + settings.plannerName + ", " + sim.world().name);
+    }
+
+    StageClock stages;
+    const mrpt::config::CConfigFileBase* configForReach;
     Settings settings;
-    world::WorldSpec world;
-    world::PeopleSimulator people;
-    world::RayCaster caster;
-    world::StaticCollisionChecker statics;
-    sim::DepthCamera camera;
-    sim::Drone drone;
-    sim::CollisionMonitor monitor;
+    SimulatorSource sim;
     mapping::ExplorationMap map;
-    std::unique_ptr<planning::ExplorationPlanner> planner;
-    std::mt19937_64 noiseRng;
     PeopleInput peopleInput;
     std::ostream* log;
     eval::RunRecorder recorder;
-    mrpt::obs::CObservation3DRangeScan frame;
     OutputParams outputs;
     SceneExporter scene;
     MemoryLog memory;
+    PlannerDriver driver;
     std::unique_ptr<RawlogRecorder> rawlog;
-    std::vector<Eigen::Vector3d> trajectory;  ///< flown path, for the scene
-    std::vector<int> collisionTracked;        ///< per monitor event, see trackedAtCollision
-    std::vector<planning::TreeEdge> lastTree;
+    std::unique_ptr<PeopleCsv> peopleCsv;
+    std::optional<FrameStep> frameStep;
+    std::vector<int> collisionTracked;  ///< per monitor event, see trackedAtCollision
     double nextScene = 0.0;
     const std::atomic<bool>* stopFlag = nullptr;
 
-    double t = 0.0;
-    double framePeriod = 0.1;
-    double nextFrame = 0.0;
     double exploreStart = -1.0;
     double nextSample = 0.0;
     double nextProgress = 0.0;
     double pathLength = 0.0;
-    double planningCharged = 0.0;
-    int iterations = 0;
     int abortedPaths = 0;
     int hoverEvasions = 0;  ///< escapes flown while hovering (planning, waiting)
     int stalePlans = 0;     ///< plans unsafe against the frames taken while they were made
     bool watchingHover = false;
-    StageClock stages;
     double hoverSafeUntil = 0.0;  ///< while watchingHover: how long hovering must stay safe
     std::optional<planning::Plan> pendingEvasion;
     bool finished = false;
@@ -537,7 +459,7 @@ eval::RunSummary Mission::run() {
     std::exception_ptr failure;
     try {
         m.takeOffAndLookAround();
-        m.exploreStart = m.t;
+        m.exploreStart = m.now();
         m.recordDueSamples();
         if (!stopRequested_)
             m.explore();
@@ -549,19 +471,7 @@ eval::RunSummary Mission::run() {
     if (m.endReason.empty())
         m.endReason = "interrupted";
     const eval::RunSummary summary = m.summarize(secondsSince(t0));
-    m.memory.addFinal(m.explorationTime(), m.map.knownVolumeInBox(), m.map.octree().size());
-    m.recorder.flush();
-    m.recorder.writeSummary(summary);
-    m.recorder.writeTiming(summary.wallTime, m.t, m.stages.report(summary.wallTime));
-    m.recorder.writeCollisions();
-    if (!m.map.writeBinary(m.recorder.path("map.bt")))
-        throw std::runtime_error("cannot write " + m.recorder.path("map.bt"));
-    if (m.rawlog)
-        m.rawlog->close();
-    if (m.outputs.scene)
-        m.writeScene();
-    m.memory.writePlot(m.recorder.path("memory.png"),
-                       "Memory: " + m.settings.plannerName + ", " + m.world.name);
+    m.writeOutputs(summary);
     if (failure)
         std::rethrow_exception(failure);
     return summary;

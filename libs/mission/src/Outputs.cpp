@@ -18,6 +18,7 @@ OutputParams loadOutputParams(const mrpt::config::CConfigFileBase& cfg) {
     p.pngHeight = r.requireInt("png_height");
     if (p.pngWidth < 16 || p.pngHeight < 16 || p.pngWidth > 8192 || p.pngHeight > 8192)
         throw InputError("[output] png_width/png_height: must be in [16, 8192]");
+    p.peopleCsv = r.requireBool("people_csv");
     p.memoryEvery = r.requireDouble("memory_every_s");
     if (!(p.memoryEvery >= 0))
         throw InputError("[output] memory_every_s: must be >= 0");

@@ -14,6 +14,7 @@ struct OutputParams {
     bool renderPng = true;    ///< DIR/scene_perspective.png and DIR/scene_top.png
     int pngWidth = 1280;
     int pngHeight = 960;
+    bool peopleCsv = true;  ///< DIR/people.csv when people are tracked
     double memoryEvery =
         600.0;  ///< DIR/memory.csv every this many seconds of exploration; 0 = none
 };

@@ -93,8 +93,8 @@ PeopleInput::PeopleInput(const PeopleInputParams& params, std::uint64_t seed)
 void PeopleInput::detect(double t, const mrpt::obs::CObservation3DRangeScan& frame,
                          const FlatPose& robot, const mapping::ExplorationMap& map,
                          const Eigen::Vector3d& bodySize) {
-    const std::vector<perception::PersonMeasurement> found = detector_.detect(frame, robot, map);
-    tracker_.update(t, found, seenEmptyIn({&frame, robot}, bodySize));
+    detections_ = detector_.detect(frame, robot, map);
+    tracker_.update(t, detections_, seenEmptyIn({&frame, robot}, bodySize));
     forecasts_ = tracker_.forecasts();
 }
 
@@ -124,6 +124,38 @@ void PeopleInput::observe(double t, const std::vector<world::PersonState>& truth
                           const world::RayCaster& scene, const FlatPose& sensor,
                           const sim::CameraParams& camera, const Eigen::Vector3d& bodySize,
                           const DepthView& view) {
+    const CameraSight sight{&scene, sensor, camera};
+    measure(t, truth, &sight, bodySize, view);
+}
+
+void PeopleInput::checkSourceCanFeed(const Frame& first, bool hasSight,
+                                     const std::string& sourceName) const {
+    if (detects())
+        return;
+    if (params_.source == "sensed" && !hasSight)
+        throw InputError(sourceName +
+                         ": [tracking] people_source = sensed needs the simulator's scene; "
+                         "recorded frames can give detected or ground_truth");
+    if (!first.truePeople)
+        throw InputError(sourceName + ": [tracking] people_source = " + params_.source +
+                         " needs the true people (PERSON_<i> poses), and the frames have none; "
+                         "use people_source = detected");
+}
+
+void PeopleInput::update(const Frame& frame, const mapping::ExplorationMap& map,
+                         const Eigen::Vector3d& bodySize, const CameraSight* sight,
+                         const std::string& sourceName) {
+    if (detects()) {
+        detect(frame.time, *frame.depth, frame.robot, map, bodySize);
+        return;
+    }
+    checkSourceCanFeed(frame, sight != nullptr, sourceName);
+    measure(frame.time, *frame.truePeople, sight, bodySize, {frame.depth.get(), frame.robot});
+}
+
+void PeopleInput::measure(double t, const std::vector<world::PersonState>& truth,
+                          const CameraSight* sight, const Eigen::Vector3d& bodySize,
+                          const DepthView& view) {
     std::vector<perception::PersonMeasurement> seen;
     const bool sensed = params_.source == "sensed";
     const double sigma = sensed ? params_.sensedNoiseSigma : 0.0;
@@ -131,7 +163,8 @@ void PeopleInput::observe(double t, const std::vector<world::PersonState>& truth
     std::normal_distribution<double> noise(0.0, 1.0);
     for (std::size_t i = 0; i < truth.size(); ++i) {
         const int id = static_cast<int>(i);
-        if (sensed && !visible(scene, sensor, camera, params_.sensedRange, truth[i], bodySize, id))
+        if (sensed && !visible(*sight->scene, sight->sensor, sight->camera, params_.sensedRange,
+                               truth[i], bodySize, id))
             continue;
         perception::PersonMeasurement m;
         m.id = id;

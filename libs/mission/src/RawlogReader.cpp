@@ -3,6 +3,7 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/obs/CRawlog.h>
 #include <mrpt/serialization/CArchive.h>
@@ -16,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <new>
+#include <set>
 #include <utility>
 
 #include "RawlogObjects.h"
@@ -151,9 +153,11 @@ struct RawlogReader::Impl {
     std::deque<ObservationPtr> queue;  ///< read but not yet handled (sensory frame contents)
     std::shared_ptr<mrpt::obs::CObservation3DRangeScan> pending;
     double pendingStamp = 0.0;
+    std::int64_t pendingTicks = 0;
     FlatPose latestPose;
     bool hasPose = false;
     std::map<int, FlatPose> people;
+    std::set<std::string> otherPoseLabels;  ///< robot poses seen under labels not asked for
     std::size_t framesEmitted = 0;
     double lastFrameStamp = 0.0;
 
@@ -262,28 +266,54 @@ struct RawlogReader::Impl {
                  std::to_string(stamp - lastFrameStamp) + " s past the previous frame's");
     }
 
+    /** A pose observation: the robot's (poseLabel), a person's (PERSON_<i>), or another. */
     bool takePose(const ObservationPtr& o) {
+        if (auto odometry = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(o))
+            return takeRobotPose(odometry->sensorLabel, mrpt::poses::CPose3D(odometry->odometry));
         auto pose = std::dynamic_pointer_cast<mrpt::obs::CObservationRobotPose>(o);
         if (!pose)
             return false;
-        const bool mine = pose->sensorLabel == poseLabel || personIndex(pose->sensorLabel) >= 0;
-        if (mine && !finitePose(pose->pose.mean))
-            fail("corrupt rawlog: pose '" + pose->sensorLabel + "' in " + where(objects) +
+        const int person = personIndex(pose->sensorLabel);
+        if (person < 0)
+            return takeRobotPose(pose->sensorLabel, pose->pose.mean);
+        checkFinite(pose->sensorLabel, pose->pose.mean);
+        people[person] = flatPose(pose->pose.mean);
+        return true;
+    }
+
+    bool takeRobotPose(const std::string& label, const mrpt::poses::CPose3D& pose) {
+        if (label != poseLabel) {
+            otherPoseLabels.insert(label);
+            return false;
+        }
+        checkFinite(label, pose);
+        latestPose = flatPose(pose);
+        hasPose = true;
+        return true;
+    }
+
+    void checkFinite(const std::string& label, const mrpt::poses::CPose3D& pose) const {
+        if (!finitePose(pose))
+            fail("corrupt rawlog: pose '" + label + "' in " + where(objects) +
                  " is not finite or lies beyond " +
                  std::to_string(static_cast<int>(kMaxCoordinate)) + " m");
-        if (pose->sensorLabel == poseLabel) {
-            latestPose = flatPose(pose->pose.mean);
-            hasPose = true;
-            return true;
-        }
-        const int person = personIndex(pose->sensorLabel);
-        if (person >= 0)
-            people[person] = flatPose(pose->pose.mean);
-        return person >= 0;
+    }
+
+    /** A frame without a pose under poseLabel while the file has robot poses under others. */
+    void checkPoseLabel() const {
+        if (hasPose || otherPoseLabels.empty())
+            return;
+        std::string labels;
+        for (const std::string& l : otherPoseLabels)
+            labels += (labels.empty() ? "'" : ", '") + l + "'";
+        fail("no robot pose labelled '" + poseLabel + "' ([rawlog] pose_label) at or before " +
+             where(objects) + "; the robot poses in the file are labelled " + labels);
     }
 
     void emit(RawlogFrame& frame) {
+        checkPoseLabel();
         frame.stamp = pendingStamp;
+        frame.ticks = pendingTicks;
         frame.depth = std::move(pending);
         frame.hasPose = hasPose;
         frame.robot = hasPose ? latestPose : FlatPose{};
@@ -337,6 +367,7 @@ bool RawlogReader::next(RawlogFrame& frame) {
         if (depth) {
             m.pending = std::move(depth);
             m.pendingStamp = stamp;
+            m.pendingTicks = o->timestamp.time_since_epoch().count();
         } else {
             m.takePose(o);
         }

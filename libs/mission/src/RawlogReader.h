@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -16,6 +17,8 @@ namespace daep::mission {
 /** One depth frame of a rawlog with the robot pose it was taken from. */
 struct RawlogFrame {
     double stamp = 0.0;  ///< the observation's timestamp, seconds since the Unix epoch
+    /** The same timestamp exactly, in mrpt::Clock ticks: differences of these lose nothing. */
+    std::int64_t ticks = 0;
     std::shared_ptr<mrpt::obs::CObservation3DRangeScan> depth;
     FlatPose robot;        ///< identity when the rawlog gave no pose at or before `stamp`
     bool hasPose = false;  ///< a pose observation gave `robot`

@@ -6,6 +6,7 @@
 
 #include "daep/common/Types.h"
 #include "daep/mapping/ExplorationMap.h"
+#include "daep/mission/FrameSource.h"
 #include "daep/perception/PeopleDetector.h"
 #include "daep/perception/PeopleTracker.h"
 #include "daep/sim/DepthCamera.h"
@@ -49,6 +50,14 @@ struct DepthView {
     FlatPose robot;
 };
 
+/** What people_source = sensed needs besides the truth: the simulated scene and the camera in it.
+ */
+struct CameraSight {
+    const world::RayCaster* scene = nullptr;
+    FlatPose sensor;  ///< the camera's pose (x forward, z up)
+    sim::CameraParams camera;
+};
+
 /**
  * The tracker's empty-place test for a frame: nobody stands at xy when the frame sees past
  * the middle of a body there, across its width (a person a little off still blocks one of
@@ -76,6 +85,19 @@ public:
                  const sim::CameraParams& camera, const Eigen::Vector3d& bodySize,
                  const DepthView& view = {});
 
+    /**
+     * One frame of any source, before it goes into the map: people_source = detected finds
+     * people in it (detect), ground_truth and sensed measure the frame's true people (observe;
+     * sensed needs `sight`, the simulator's scene). InputError naming `sourceName` when the
+     * source cannot give what the setting asks for.
+     */
+    void update(const Frame& frame, const mapping::ExplorationMap& map,
+                const Eigen::Vector3d& bodySize, const CameraSight* sight,
+                const std::string& sourceName);
+
+    /** InputError naming `sourceName` when its frames cannot feed this people_source. */
+    void checkSourceCanFeed(const Frame& first, bool hasSight, const std::string& sourceName) const;
+
     bool detects() const { return params_.source == "detected"; }
     /** Whether people are known only where the camera looks (sensed or detected). */
     bool fromCamera() const { return params_.source != "ground_truth"; }
@@ -88,6 +110,8 @@ public:
                 const mapping::ExplorationMap& map, const Eigen::Vector3d& bodySize);
 
     const std::vector<perception::PersonForecast>& forecasts() const { return forecasts_; }
+    /** What the detector found in the last frame (people_source = detected). */
+    const std::vector<perception::PersonMeasurement>& detections() const { return detections_; }
 
     /**
      * Where the people measured within the last half second stand at `t`, with a margin: the
@@ -106,11 +130,15 @@ public:
                         int index);
 
 private:
+    void measure(double t, const std::vector<world::PersonState>& truth, const CameraSight* sight,
+                 const Eigen::Vector3d& bodySize, const DepthView& view);
+
     PeopleInputParams params_;
     perception::PeopleTracker tracker_;
     perception::PeopleDetector detector_;
     std::mt19937_64 rng_;
     std::vector<perception::PersonForecast> forecasts_;
+    std::vector<perception::PersonMeasurement> detections_;
 };
 
 }  // namespace daep::mission

@@ -14,21 +14,29 @@ class ExplorationMap;
 namespace daep::mission {
 
 class ExperimentConfig;
+class FrameSource;
 
 /**
- * An experiment on recorded data ([experiment] source = rawlog): streams the depth frames of
- * [experiment] rawlog_file, integrates each into the exploration map at the robot pose the
- * rawlog gives, and every [rawlog] plan_every_s of rawlog time asks the planner what it would
- * fly from there (nothing is flown). Writes plans.csv (pose, plan, gain, keepFlying verdict),
- * timeseries.csv, trajectory.csv, summary.json, timing.json, collisions.csv (empty), map.bt
- * and the scene, like Mission. People are detected in every frame ([detector]) and tracked
- * ([tracker]); people.csv has the confirmed tracks after each frame. The planner does not see
- * them yet: it plans on the map only.
+ * An experiment on recorded data ([experiment] source = rawlog), or on any other open-loop
+ * frame source (a live camera): streams the depth frames, puts each through the same per-frame
+ * step as a simulated mission (the people of [tracking] people_source, tracked with [tracker];
+ * then the map, at the robot pose the source gives), and every [rawlog] plan_every_s of frame
+ * time asks the planner, with the tracked people, what it would fly from there (nothing is
+ * flown). Writes plans.csv (pose, plan, gain, and whether the plan is safe against the map and
+ * the people), people.csv (the confirmed tracks after each frame), timeseries.csv,
+ * trajectory.csv, summary.json, timing.json, collisions.csv (empty), map.bt, run.rawlog with
+ * [output] rawlog, and the scene with the tracks and their predicted paths.
  */
 class RawlogMission {
 public:
     /** Opens the rawlog and reads its first depth frame; throws InputError on bad input. */
     RawlogMission(const ExperimentConfig& config, const std::string& outputDir, std::ostream* log);
+    /**
+     * The same over another open-loop source; [experiment] rawlog_file is not needed, the
+     * [rawlog] keys (box or world, plan_every_s, realtime) apply as for a rawlog.
+     */
+    RawlogMission(const ExperimentConfig& config, std::unique_ptr<FrameSource> frames,
+                  const std::string& outputDir, std::ostream* log);
     ~RawlogMission();
 
     /** Replays to the end of the rawlog and writes all outputs; returns the summary. */

@@ -1,0 +1,93 @@
+#include "PlannerDriver.h"
+
+#include <chrono>
+
+#include "StageClock.h"
+#include "daep/eval/RunRecorder.h"
+#include "daep/mission/PeopleInput.h"
+
+namespace daep::mission {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+const char* planStatusName(const planning::Plan& plan) {
+    if (plan.status == planning::Plan::Status::Finished)
+        return "finished";
+    return plan.waypoints.empty() && plan.waitSeconds > 0 ? "wait" : "path";
+}
+
+PlannerDriver::PlannerDriver(std::unique_ptr<planning::ExplorationPlanner> planner,
+                             const Setup& setup)
+    : planner_(std::move(planner)), setup_(setup), usesPeople_(planner_->usesPeople()) {}
+
+planning::PlanningContext PlannerDriver::context(double t, const FlatPose& pose) const {
+    planning::PlanningContext ctx;
+    ctx.time = t;
+    ctx.pose = pose;
+    ctx.map = setup_.map;
+    ctx.explorationBox = setup_.explorationBox;
+    ctx.motion = setup_.motion;
+    ctx.droneSize = setup_.droneSize;
+    ctx.personSize = setup_.personSize;
+    if (usesPeople_ && setup_.people) {
+        ctx.people = &setup_.people->forecasts();
+        ctx.peopleFromCamera = setup_.people->fromCamera();
+    }
+    return ctx;
+}
+
+PlannerDriver::Call PlannerDriver::call(const planning::PlanningContext& context) {
+    planning::PlanningContext ctx = context;
+    const auto t0 = Clock::now();
+    if (!setup_.fixedTime)  // wall time: never where runs must repeat
+        ctx.deadline = planning::PlanningDeadline::in(setup_.deadlineSeconds);
+    Call c;
+    {
+        const auto timed = setup_.stages->time(Stage::Planning);
+        c.plan = planner_->plan(ctx);
+    }
+    c.wallSec = secondsSince(t0);
+    if (!c.plan.tree.empty())
+        lastTree_ = c.plan.tree;
+    ++iterations_;
+    return c;
+}
+
+PlannerDriver::Call PlannerDriver::planFlight(double t, const FlatPose& pose, double recordTime) {
+    Call c = call(context(t, pose));
+    c.chargedSec = setup_.fixedTime ? setup_.fixedSeconds : c.wallSec;
+    charged_ += c.chargedSec;
+    setup_.recorder->addPlan(recordTime, c.chargedSec, c.wallSec, planStatusName(c.plan),
+                             c.plan.gain, static_cast<int>(c.plan.waypoints.size()), c.plan.reason);
+    return c;
+}
+
+PlannerDriver::Call PlannerDriver::planReplay(double t, const FlatPose& pose) {
+    const planning::PlanningContext ctx = context(t, pose);
+    Call c = call(ctx);
+    c.chargedSec = c.wallSec;
+    charged_ += c.chargedSec;
+    eval::ReplayPlanRecord r;
+    r.wallSec = c.wallSec;
+    r.time = t;
+    r.pose = pose;
+    r.status = planStatusName(c.plan);
+    r.gain = c.plan.gain;
+    r.waypoints = static_cast<int>(c.plan.waypoints.size());
+    if (!c.plan.waypoints.empty()) {
+        r.firstWaypoint = c.plan.waypoints.front().pose;
+        r.safe = planner_->keepFlying(ctx, c.plan, 0) ? 1 : 0;
+    }
+    setup_.recorder->addReplayPlan(r);
+    setup_.recorder->flush();
+    return c;
+}
+
+}  // namespace daep::mission

@@ -1,0 +1,56 @@
+#include "RawlogParams.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <sstream>
+
+#include "daep/common/Config.h"
+#include "daep/common/Error.h"
+#include "daep/mission/ExperimentConfig.h"
+
+namespace daep::mission {
+
+/** A key whose empty value means "not set". */
+std::string optionalString(const ConfigReader& r, const std::string& key) {
+    const std::string v = r.config().read_string(r.section(), key, "", false);
+    const auto b = v.find_first_not_of(" \t");
+    const auto e = v.find_last_not_of(" \t\r");
+    return b == std::string::npos ? std::string() : v.substr(b, e - b + 1);
+}
+
+namespace {
+
+Eigen::Vector3d readVector(const ConfigReader& r, const std::string& key,
+                           const std::string& source) {
+    std::istringstream is(r.requireString(key));
+    Eigen::Vector3d v;
+    if (!(is >> v.x() >> v.y() >> v.z()) || !(is >> std::ws).eof())
+        throw InputError(source + ": [rawlog] " + key + ": expected three numbers \"x y z\"");
+    return v;
+}
+
+}  // namespace
+
+RawlogParams loadRawlogParams(const ExperimentConfig& experiment, bool needFile) {
+    const std::string& source = experiment.source();
+    const ConfigReader e(experiment.config(), "experiment", source);
+    const ConfigReader r(experiment.config(), "rawlog", source);
+    RawlogParams p;
+    p.file = resolveDataPath(optionalString(e, "rawlog_file"));
+    if (p.file.empty() && needFile)
+        throw InputError(source + ": [experiment] rawlog_file: required when source = rawlog");
+    p.planEvery = r.requireDouble("plan_every_s");
+    if (p.planEvery <= 0)
+        throw InputError(source + ": [rawlog] plan_every_s: must be > 0");
+    p.world = optionalString(r, "world");
+    p.boxMin = readVector(r, "box_min", source);
+    p.boxMax = readVector(r, "box_max", source);
+    if (p.world.empty() && !(p.boxMin.array() < p.boxMax.array()).all())
+        throw InputError(source + ": [rawlog] box_min must be below box_max on every axis");
+    p.sensorLabel = optionalString(r, "sensor_label");
+    p.poseLabel = r.requireString("pose_label");
+    p.realtime = r.requireBool("realtime");
+    return p;
+}
+
+}  // namespace daep::mission
