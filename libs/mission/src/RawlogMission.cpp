@@ -12,26 +12,12 @@
 #include <sstream>
 #include <thread>
 
-#include "ComponentParams.h"
-#include "FrameStep.h"
-#include "MissionSetup.h"
-#include "Outputs.h"
-#include "PeopleCsv.h"
-#include "PlannerDriver.h"
+#include "MissionCore.h"
 #include "RawlogParams.h"
-#include "RawlogRecorder.h"
-#include "SceneExport.h"
-#include "StageClock.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
-#include "daep/eval/Statistics.h"
-#include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
-#include "daep/mission/PeopleInput.h"
 #include "daep/mission/RawlogSource.h"
-#include "daep/perception/PeopleDetector.h"
-#include "daep/perception/PeopleTracker.h"
-#include "daep/planning/Planner.h"
 
 namespace daep::mission {
 namespace {
@@ -59,6 +45,42 @@ std::vector<world::PersonState> tracksAsPeople(
     return out;
 }
 
+/** The exploration box of a replay: a world's, or one around the first frame's pose. */
+struct ReplayBox {
+    Aabb box;
+    double volume = 0.0;
+    std::string worldName = "none";
+};
+
+ReplayBox replayBox(const ExperimentConfig& config, const RawlogParams& params,
+                    const Frame& first) {
+    ReplayBox r;
+    if (params.world.empty()) {
+        r.box.min = first.robot.position + params.boxMin;
+        r.box.max = first.robot.position + params.boxMax;
+        r.volume = r.box.volume();
+        return r;
+    }
+    Settings s = loadSettings(config);  // loadWorld resolves the name like [experiment] world
+    s.worldName = params.world;
+    s.mode = "static";
+    s.start = 0;
+    const world::WorldSpec w = loadWorld(s, config.source());
+    r.box = w.explorationBox;
+    r.volume = w.explorationVolume();
+    r.worldName = w.name;
+    return r;
+}
+
+Frame firstFrame(FrameSource& source, const RawlogParams& params) {
+    Frame first;
+    if (!source.next(first))
+        throw InputError(source.name() +
+                         ": no depth frames (CObservation3DRangeScan with a range image" +
+                         (params.sensorLabel.empty() ? "" : ", label " + params.sensorLabel) + ")");
+    return first;
+}
+
 }  // namespace
 
 bool RawlogMission::selectedBy(const ExperimentConfig& config) {
@@ -73,100 +95,34 @@ bool RawlogMission::selectedBy(const ExperimentConfig& config) {
 struct RawlogMission::Impl {
     Impl(const ExperimentConfig& config, std::unique_ptr<FrameSource> frames,
          const std::string& outputDir, std::ostream* logStream)
-        : settings(loadSettings(config)),
-          params(loadRawlogParams(config, !frames)),
+        : params(loadRawlogParams(config, !frames)),
           source(frames ? std::move(frames)
                         : std::make_unique<RawlogSource>(params.file, params.sensorLabel,
                                                          params.poseLabel)),
           frame(firstFrame(*source, params)),
-          log(logStream),
-          recorder(outputDir, eval::PlansFormat::Replay),
-          outputs(loadOutputParams(config.config())),
-          scene(outputs, outputDir, logStream),
-          peopleInput(PeopleInputParams::fromConfig(config.config()),
-                      settings.seed * 0xD1B54A32D192ED03ull + 7),
-          bodySize(loadPeopleParams(config.config()).bodySize) {
-        peopleInput.checkSourceCanFeed(frame, false, source->name());
+          box(replayBox(config, params, frame)),
+          core(config, coreUse(), outputDir, logStream) {
+        core.peopleInput.checkSourceCanFeed(frame, false, source->name());
         const auto* fromRawlog = dynamic_cast<const RawlogSource*>(source.get());
-        if (fromRawlog && !fromRawlog->lastFrameHadPose() && log)
-            *log << "note: " << source->name() << ": no robot pose with the first depth frame; "
-                 << "frames without one are mapped at the identity pose (their sensorPose "
-                 << "still applies)" << std::endl;
-        setUpBox(config);
-        map.emplace(loadMapParams(config.config()), box);
-        driver.emplace(planning::createPlanner(settings.plannerName, config.config(),
-                                               settings.seed * 0x9E3779B97F4A7C15ull + 1),
-                       driverSetup(config));
-        // Recorded data may hold people: those the planner does not keep out enter the map.
-        map->setPeopleMapped(!(driver->usesPeople() && peopleInput.excludesFromMap()));
-        if (outputs.peopleCsv)
-            peopleCsv = std::make_unique<PeopleCsv>(recorder.path("people.csv"));
-        if (outputs.rawlog)
-            rawlog = std::make_unique<RawlogRecorder>(recorder.path("run.rawlog"));
-        frameStep.emplace(stepParts());
+        if (fromRawlog && !fromRawlog->lastFrameHadPose() && core.log)
+            *core.log << "note: " << source->name()
+                      << ": no robot pose with the first depth frame; frames without one are "
+                      << "mapped at the identity pose (their sensorPose still applies)"
+                      << std::endl;
     }
 
-    static Frame firstFrame(FrameSource& source, const RawlogParams& params) {
-        Frame first;
-        if (!source.next(first))
-            throw InputError(
-                source.name() + ": no depth frames (CObservation3DRangeScan with a range image" +
-                (params.sensorLabel.empty() ? "" : ", label " + params.sensorLabel) + ")");
-        return first;
+    /** Recorded data: the people are always tracked, and may be anywhere in the frames. */
+    MissionCore::Use coreUse() const {
+        MissionCore::Use use;
+        use.explorationBox = box.box;
+        use.explorationVolume = box.volume;
+        use.plans = eval::PlansFormat::Replay;
+        use.trackPeopleAlways = true;
+        use.framesMayShowPeople = true;
+        use.timeSlack = kEps;
+        use.sourceName = source->name();
+        return use;
     }
-
-    PlannerDriver::Setup driverSetup(const ExperimentConfig& config) {
-        const sim::DroneParams drone = loadDroneParams(config.config());
-        PlannerDriver::Setup d;
-        d.map = &*map;
-        d.explorationBox = box;
-        d.motion.speed = drone.speed;
-        d.motion.yawRate = drone.yawRate;
-        d.droneSize = drone.boxSize;
-        d.personSize = bodySize;
-        d.people = &peopleInput;
-        d.fixedTime = settings.planningTime == "fixed";
-        d.fixedSeconds = settings.planningFixed;
-        d.deadlineSeconds = settings.planningDeadline;
-        d.recorder = &recorder;
-        d.stages = &stages;
-        return d;
-    }
-
-    /** Recorded data: the people are always tracked (people.csv), whatever plans on them. */
-    FrameStep::Parts stepParts() {
-        FrameStep::Parts p;
-        p.map = &*map;
-        p.recorder = &recorder;
-        p.stages = &stages;
-        p.people = &peopleInput;
-        p.peopleOutOfMap = driver->usesPeople();
-        p.bodySize = bodySize;
-        p.peopleCsv = peopleCsv.get();
-        p.rawlog = rawlog.get();
-        p.sourceName = source->name();
-        return p;
-    }
-
-    void setUpBox(const ExperimentConfig& config) {
-        if (params.world.empty()) {
-            box.min = frame.robot.position + params.boxMin;
-            box.max = frame.robot.position + params.boxMax;
-            boxVolume = box.volume();
-            worldName = "none";
-            return;
-        }
-        Settings s = settings;  // loadWorld resolves the name like [experiment] world
-        s.worldName = params.world;
-        s.mode = "static";
-        s.start = 0;
-        const world::WorldSpec w = loadWorld(s, config.source());
-        box = w.explorationBox;
-        boxVolume = w.explorationVolume();
-        worldName = w.name;
-    }
-
-    double coveragePercent() const { return 100.0 * map->knownVolumeInBox() / boxVolume; }
 
     /**
      * The frame through the per-frame step (people, then the map, then the records), then the
@@ -177,121 +133,56 @@ struct RawlogMission::Impl {
         if (params.realtime)  // the rawlog's own pace: frame time t is due t after the start
             std::this_thread::sleep_until(playStart + std::chrono::duration_cast<Clock::duration>(
                                                           std::chrono::duration<double>(t)));
-        frameStep->process(frame);
+        core.step.process(frame);
         ++frameCount;
         if (frameCount > 1)
             pathLength += (frame.robot.position - lastPose.position).norm();
         lastPose = frame.robot;
-        recordDueSamples();
+        core.recordDueSamples(t, pathLength, 0, [&] {
+            std::ostringstream o;
+            o << "  frames " << std::setw(6) << frameCount << "  plans " << std::setw(4)
+              << core.driver.iterations();
+            return o.str();
+        });
         if (t + kEps >= nextPlan) {
-            driver->planReplay(t, frame.robot);
+            core.driver.planReplay(t, frame.robot);
             while (nextPlan <= t + kEps)
                 nextPlan += params.planEvery;
         }
     }
 
-    void recordDueSamples() {
-        while (t + kEps >= nextSample) {
-            eval::MetricsSample s;
-            s.time = nextSample;
-            s.coveragePercent = coveragePercent();
-            s.planningTime = driver->chargedSeconds();
-            s.pathLength = pathLength;
-            recorder.addSample(s);
-            nextSample += settings.sampleEvery;
-            printProgressIfDue(s);
-        }
-    }
-
-    void printProgressIfDue(const eval::MetricsSample& s) {
-        if (!log || settings.progressEvery <= 0 || s.time + kEps < nextProgress)
-            return;
-        nextProgress += settings.progressEvery;
-        *log << "[t " << std::fixed << std::setprecision(0) << std::setw(5) << s.time
-             << " s] coverage " << std::setprecision(1) << std::setw(5) << s.coveragePercent
-             << " %  frames " << std::setw(6) << frameCount << "  plans " << std::setw(4)
-             << driver->iterations() << std::endl;
-    }
-
     eval::RunSummary summarize(double wallTime) const {
-        std::vector<double> ms;
-        for (double s : recorder.chargedPlanTimes())
-            ms.push_back(1e3 * s);
-        eval::RunSummary s;
-        s.coveragePercent = coveragePercent();
-        s.explorationTime = t;
-        s.pathLength = pathLength;
-        s.planningTime = driver->chargedSeconds();
-        s.planMsMedian = eval::median(ms);
-        s.planMsP95 = eval::percentile(ms, 95);
-        s.iterations = driver->iterations();
+        eval::RunSummary s = core.summary(t, pathLength, wallTime);
         s.finished = false;
         s.endReason = endReason;
-        s.wallTime = wallTime;
-        s.knownVolume = map->knownVolumeInBox();
-        s.boxVolume = boxVolume;
         s.labels = {{"source", params.file.empty() ? "frames" : "rawlog"},
                     {"rawlog", source->name()},
-                    {"world", worldName},
-                    {"planner", settings.plannerName},
-                    {"seed", std::to_string(settings.seed)}};
-        s.provenance = invocation;
+                    {"world", box.worldName},
+                    {"planner", core.settings.plannerName},
+                    {"seed", std::to_string(core.settings.seed)}};
         return s;
     }
 
     void writeOutputs(const eval::RunSummary& summary) {
-        recorder.flush();
-        if (peopleCsv)
-            peopleCsv->flush();
-        recorder.writeSummary(summary);
-        recorder.writeTiming(summary.wallTime, t, stages.report(summary.wallTime));
-        recorder.writeCollisions();
-        if (!map->writeBinary(recorder.path("map.bt")))
-            throw std::runtime_error("cannot write " + recorder.path("map.bt"));
-        if (rawlog)
-            rawlog->close();
-        if (!outputs.scene)
-            return;
-        SceneContent c;
-        c.map = &*map;
-        c.trajectory = &frameStep->trajectory();
-        c.tree = &driver->lastTree();
-        c.people = tracksAsPeople(t, peopleInput.forecasts());
-        c.bodySize = bodySize;
-        c.drone = lastPose;
-        scene.write(c);
+        SceneContent scene = core.sceneBase();
+        scene.people = tracksAsPeople(t, core.peopleInput.forecasts());
+        scene.drone = lastPose;
+        core.writeOutputs(summary, t, &scene);
     }
 
-    StageClock stages;
-    Settings settings;
     RawlogParams params;
     std::unique_ptr<FrameSource> source;
     Frame frame;  ///< read before any output exists: a file that is no rawlog leaves none
-    std::ostream* log;
-    eval::RunRecorder recorder;
-    OutputParams outputs;
-    SceneExporter scene;
-    PeopleInput peopleInput;
-    Eigen::Vector3d bodySize;  ///< of the people the detector looks for
-    Aabb box;
-    double boxVolume = 0.0;
-    std::string worldName;
-    std::optional<mapping::ExplorationMap> map;
-    std::optional<PlannerDriver> driver;
-    std::unique_ptr<PeopleCsv> peopleCsv;
-    std::unique_ptr<RawlogRecorder> rawlog;
-    std::optional<FrameStep> frameStep;
+    ReplayBox box;
+    MissionCore core;
     FlatPose lastPose;
     Clock::time_point playStart = Clock::now();
 
     double t = 0.0;
     double nextPlan = 0.0;
-    double nextSample = 0.0;
-    double nextProgress = 0.0;
     double pathLength = 0.0;
     std::size_t frameCount = 0;
     std::string endReason;
-    RunProvenance invocation;
 };
 
 RawlogMission::RawlogMission(const ExperimentConfig& config, const std::string& outputDir,
@@ -300,14 +191,12 @@ RawlogMission::RawlogMission(const ExperimentConfig& config, const std::string& 
 
 RawlogMission::RawlogMission(const ExperimentConfig& config, std::unique_ptr<FrameSource> frames,
                              const std::string& outputDir, std::ostream* log)
-    : impl_(std::make_unique<Impl>(config, std::move(frames), outputDir, log)) {
-    impl_->invocation = config.invocation();
-}
+    : impl_(std::make_unique<Impl>(config, std::move(frames), outputDir, log)) {}
 
 RawlogMission::~RawlogMission() = default;
 
 const mapping::ExplorationMap& RawlogMission::map() const {
-    return *impl_->map;
+    return impl_->core.map;
 }
 
 std::size_t RawlogMission::frames() const {

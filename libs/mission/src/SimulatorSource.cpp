@@ -9,8 +9,10 @@
 #include <sstream>
 
 #include "ComponentParams.h"
+#include "MissionSetup.h"
 #include "StageClock.h"
 #include "daep/common/Error.h"
+#include "daep/mission/ExperimentConfig.h"
 
 namespace daep::mission {
 namespace {
@@ -54,6 +56,14 @@ SimulatorSource::SimulatorSource(world::WorldSpec world,
     framePeriod_ = 1.0 / camera_.params().rateHz;
     frame_.depth = depth_;
 }
+
+SimulatorSource::SimulatorSource(const ExperimentConfig& experiment, StageClock* stages)
+    : SimulatorSource(experiment, loadSettings(experiment), stages) {}
+
+SimulatorSource::SimulatorSource(const ExperimentConfig& experiment, const Settings& settings,
+                                 StageClock* stages)
+    : SimulatorSource(loadWorld(settings, experiment.source()), experiment.config(), settings.start,
+                      settings.climb, settings.seed, stages) {}
 
 void SimulatorSource::checkStartIsFree(int start, double climb) const {
     const Eigen::Vector3d given = world_.starts[std::size_t(start)];

@@ -20,7 +20,9 @@ class CConfigFileBase;
 
 namespace daep::mission {
 
+class ExperimentConfig;
 class StageClock;
+struct Settings;
 
 /**
  * The built-in simulator as a frame source, closed loop: the world (walking people, the depth
@@ -37,6 +39,8 @@ public:
      */
     SimulatorSource(world::WorldSpec world, const mrpt::config::CConfigFileBase& config, int start,
                     double climb, std::uint64_t seed, StageClock* stages);
+    /** The experiment's world, start, climb and seed. */
+    SimulatorSource(const ExperimentConfig& experiment, StageClock* stages);
 
     bool next(Frame& frame) override;
     std::string name() const override { return world_.sourceFile; }
@@ -75,6 +79,8 @@ public:
     const sim::CollisionMonitor& monitor() const { return monitor_; }
 
 private:
+    SimulatorSource(const ExperimentConfig& experiment, const Settings& settings,
+                    StageClock* stages);
     void checkStartIsFree(int start, double climb) const;
     void takeFrame();
 

@@ -1,0 +1,106 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "FrameStep.h"
+#include "MissionSetup.h"
+#include "Outputs.h"
+#include "PeopleCsv.h"
+#include "PlannerDriver.h"
+#include "RawlogRecorder.h"
+#include "SceneExport.h"
+#include "StageClock.h"
+#include "daep/eval/RunRecorder.h"
+#include "daep/mapping/ExplorationMap.h"
+#include "daep/mission/PeopleInput.h"
+
+namespace daep::mission {
+
+class ExperimentConfig;
+
+/**
+ * What every mission has, whatever its frames come from (the simulator, closed loop; a rawlog
+ * or another open-loop source): the map, the people input, the planner driver, the per-frame
+ * step, the records and the outputs written at the end. Built from the experiment's config.
+ */
+struct MissionCore {
+    /** How a mission uses its people and its clock. */
+    struct Use {
+        Aabb explorationBox;
+        double explorationVolume = 0.0;  ///< coverage's denominator (a world may declare it)
+        eval::PlansFormat plans = eval::PlansFormat::Flight;
+        /** Tracked even when the planner does not use them (recorded data: what it shows). */
+        bool trackPeopleAlways = false;
+        /** The frames may show people (a dynamic world, recorded data). */
+        bool framesMayShowPeople = true;
+        /** Slack (s) of the sample and progress clocks. */
+        double timeSlack = 1e-9;
+        std::string sourceName;
+    };
+
+    MissionCore(const ExperimentConfig& config, const Use& use, const std::string& outputDir,
+                std::ostream* log);
+
+    /** timeseries.csv rows due by `time`, and the progress line (`progress` adds its figures). */
+    template <typename Progress>
+    void recordDueSamples(double time, double pathLength, int collisions, Progress&& progress) {
+        while (time + use.timeSlack >= nextSample) {
+            eval::MetricsSample s;
+            s.time = nextSample;
+            s.coveragePercent = coveragePercent();
+            s.pathLength = pathLength;
+            s.planningTime = driver.chargedSeconds();
+            s.collisions = collisions;
+            recorder.addSample(s);
+            nextSample += settings.sampleEvery;
+            if (log && settings.progressEvery > 0 && s.time + use.timeSlack >= nextProgress) {
+                nextProgress += settings.progressEvery;
+                printProgress(s, progress());
+            }
+        }
+    }
+
+    /** Known volume over the box's (or the world's declared) volume. */
+    double coveragePercent() const { return 100.0 * map.knownVolumeInBox() / boxVolume; }
+
+    /** The figures every mission reports; the caller adds its own. */
+    eval::RunSummary summary(double explorationTime, double pathLength, double wallTime) const;
+
+    /** Closes the streams and writes summary.json, timing.json, collisions.csv, map.bt, scene. */
+    void writeOutputs(const eval::RunSummary& summary, double simTime,
+                      const SceneContent* sceneContent);
+
+    /** The scene's map, trajectory and tree; the caller adds people and the drone. */
+    SceneContent sceneBase() const;
+
+    StageClock stages;
+    Settings settings;
+    Use use;
+    std::ostream* log;
+    eval::RunRecorder recorder;
+    OutputParams outputs;
+    SceneExporter scene;
+    mapping::ExplorationMap map;
+    double boxVolume;
+    PeopleInput peopleInput;
+    Eigen::Vector3d bodySize;
+    PlannerDriver driver;
+    std::unique_ptr<PeopleCsv> peopleCsv;
+    std::unique_ptr<RawlogRecorder> rawlog;
+    FrameStep step;
+    RunProvenance invocation;
+
+private:
+    PlannerDriver::Setup driverSetup(const ExperimentConfig& config);
+    FrameStep::Parts stepParts();
+    void printProgress(const eval::MetricsSample& s, const std::string& figures) const;
+
+    double nextSample = 0.0;
+    double nextProgress = 0.0;
+};
+
+}  // namespace daep::mission
