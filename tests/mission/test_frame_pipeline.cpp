@@ -13,6 +13,7 @@
 #include "PlannerDriver.h"
 #include "SimulatorSource.h"
 #include "StageClock.h"
+#include "TestFiles.h"
 #include "daep/eval/RunRecorder.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
@@ -28,20 +29,10 @@ using namespace daep::mission;
 const std::string kTinyRoom = std::string(DAEP_SOURCE_DIR) + "/tests/e2e/data/tiny_room.ini";
 
 fs::path freshDir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() /
-                       ("daep_test_pipeline_" + std::to_string(::getpid()) + "_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
+    return daep::test::freshDir("daep_test_pipeline_", name);
 }
 
-std::vector<std::string> lines(const fs::path& p) {
-    std::ifstream f(p);
-    std::vector<std::string> out;
-    for (std::string l; std::getline(f, l);)
-        out.push_back(l);
-    return out;
-}
+using daep::test::lines;
 
 FlatPose at(double x, double y, double z) {
     FlatPose p;

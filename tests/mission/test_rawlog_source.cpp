@@ -19,6 +19,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "TestFiles.h"
 #include "daep/common/Error.h"
 #include "daep/mapping/DepthUnprojection.h"
 #include "daep/mapping/ExplorationMap.h"
@@ -39,11 +40,7 @@ const std::string kDataset = std::string(DAEP_SOURCE_DIR) + "/datasets/tiny_room
 const std::string kKinect = "/usr/share/mrpt/datasets/tests_rgbd.rawlog";
 
 fs::path freshDir(const std::string& name) {
-    const fs::path d =
-        fs::temp_directory_path() / ("daep_test_rawsrc_" + std::to_string(::getpid()) + "_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
+    return daep::test::freshDir("daep_test_rawsrc_", name);
 }
 
 std::string readBytes(const fs::path& p) {
@@ -53,13 +50,7 @@ std::string readBytes(const fs::path& p) {
     return ss.str();
 }
 
-std::vector<std::string> lines(const fs::path& p) {
-    std::ifstream f(p);
-    std::vector<std::string> out;
-    for (std::string l; std::getline(f, l);)
-        out.push_back(l);
-    return out;
-}
+using daep::test::lines;
 
 fs::path out(const std::ostringstream& text) {
     static int n = 0;
