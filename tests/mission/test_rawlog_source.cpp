@@ -8,14 +8,18 @@
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3D.h>
 #include <mrpt/serialization/CArchive.h>
 #include <unistd.h>
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -27,6 +31,7 @@
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/Mission.h"
 #include "daep/mission/RawlogMission.h"
+#include "daep/mission/RawlogSource.h"
 
 namespace {
 
@@ -475,4 +480,77 @@ TEST(RawlogSource, RealtimePlaybackKeepsTheRawlogsPace) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(mission.frames(), 10u);
     EXPECT_GE(wall, 1.8);
+}
+
+/** Known cells of the replay of `rawlog` with `settings`, and its summary's known volume. */
+double replayedKnownVolume(const std::string& rawlog, const std::vector<std::string>& settings,
+                           const std::string& name) {
+    std::vector<std::string> all = {"rawlog.world=tiny_room.yaml"};
+    all.insert(all.end(), settings.begin(), settings.end());
+    return RawlogMission(replayConfig(rawlog, all), freshDir(name), nullptr).run().knownVolume;
+}
+
+/** A run's own trajectory_tum.txt gives its replay the poses the rawlog gave. */
+TEST(RawlogSource, PosesFromARunsTumTrajectoryMapLikeTheRawlogsPoses) {
+    const fs::path sim = freshDir("tumsim");
+    daep::mission::Mission(
+        ExperimentConfig::fromFile(
+            kTinyRoom, {"experiment.max_time_s=6", "output.rawlog=true", "output.scene=false"}),
+        sim.string(), nullptr)
+        .run();
+    const std::string rawlog = (sim / "run.rawlog").string();
+    const double fromRawlog = replayedKnownVolume(rawlog, {}, "tumA");
+    const double fromFile = replayedKnownVolume(
+        rawlog,
+        {"rawlog.poses_file=" + (sim / "trajectory_tum.txt").string(),
+         "rawlog.poses_file_clock=relative", "rawlog.pose_label=NOT_IN_THE_FILE"},
+        "tumB");
+    std::cout << "TUM body poses: known " << fromFile << " m^3, rawlog poses " << fromRawlog
+              << " m^3\n";
+    EXPECT_GT(fromRawlog, 30.0);
+    EXPECT_NEAR(fromFile, fromRawlog, 0.01 * fromRawlog);  // the file rounds to 0.1 mm
+}
+
+/**
+ * The TUM benchmark's ground truth is the camera's optical centre (z forward, y down): the
+ * dataset's camera poses written that way, with absolute timestamps, map like its own poses.
+ */
+TEST(RawlogSource, OpticalCameraPosesOfATumFileMapLikeTheRobotPoses) {
+    daep::mission::RawlogSource source(kDataset, "", "DRONE_POSE");
+    const fs::path dir = freshDir("optical");
+    std::ofstream tum(dir / "groundtruth.txt");
+    tum << "# timestamp tx ty tz qx qy qz qw\n" << std::fixed << std::setprecision(9);
+    Eigen::Matrix3d sensorInOptical;  // MRPT sensor axes in optical axes
+    sensorInOptical << 0, -1, 0, 0, 0, -1, 1, 0, 0;
+    for (daep::mission::Frame f; source.next(f);) {
+        const mrpt::poses::CPose3D robot(f.robot.position.x(), f.robot.position.y(),
+                                         f.robot.position.z(), f.robot.yaw, 0, 0);
+        const mrpt::poses::CPose3D sensor = robot + f.depth->sensorPose;
+        Eigen::Matrix3d r;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                r(i, j) = sensor.getRotationMatrix()(i, j);
+        const Eigen::Quaterniond q(r * sensorInOptical.transpose());
+        tum << source.firstStamp() + f.time << ' ' << sensor.x() << ' ' << sensor.y() << ' '
+            << sensor.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+    }
+    tum.close();
+    const double fromRawlog = replayedKnownVolume(kDataset, {}, "opticalA");
+    const double fromFile =
+        replayedKnownVolume(kDataset,
+                            {"rawlog.poses_file=" + (dir / "groundtruth.txt").string(),
+                             "rawlog.poses_file_frame=optical"},
+                            "opticalB");
+    std::cout << "TUM optical poses: known " << fromFile << " m^3, rawlog poses " << fromRawlog
+              << " m^3\n";
+    EXPECT_GT(fromRawlog, 30.0);
+    EXPECT_NEAR(fromFile, fromRawlog, 0.005 * fromRawlog);
+
+    // A poses file that is not one names its line.
+    std::ofstream(dir / "bad.txt") << "# header\n1.0 2 3\n";
+    const std::string e = inputErrorOf([&] {
+        replayedKnownVolume(kDataset, {"rawlog.poses_file=" + (dir / "bad.txt").string()}, "bad");
+    });
+    EXPECT_NE(e.find("bad.txt:2: expected 'timestamp tx ty tz qx qy qz qw'"), std::string::npos)
+        << e;
 }

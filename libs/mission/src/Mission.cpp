@@ -26,10 +26,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kEps = 1e-9;
 
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 }  // namespace
 
 struct Mission::Impl {
@@ -51,17 +47,6 @@ struct Mission::Impl {
     }
 
     const Settings& settings() const { return core.settings; }
-
-    /** The most coverage this world and start allow, on the map's grid. */
-    double reachablePercent() const {
-        world::ReachParams p;
-        p.resolution = core.map.resolution();
-        p.robotRadius =
-            requireNonNegative(ConfigReader(*configForReach, "planning"), "robot_radius");
-        p.climb = settings().climb;
-        return world::computeReachableVolume(sim.world(), sim.world().starts[settings().start], p)
-            .reachablePercent;
-    }
 
     double now() const { return sim.time(); }
     bool exploring() const { return exploreStart >= 0; }
@@ -280,7 +265,8 @@ struct Mission::Impl {
             core.recorder.addCollision(e.personIndex, e.start, e.end, collisionTracked[i]);
         }
         eval::RunSummary s = core.summary(explorationTime(), pathLength, wallTime);
-        s.reachablePercent = reachablePercent();
+        s.reachablePercent =
+            reachablePercent(sim.world(), settings(), *configForReach, core.map.resolution());
         s.collisions = monitor.personCollisions();
         s.staticCollisions = monitor.staticCollisions();
         s.abortedPaths = abortedPaths;

@@ -1,4 +1,6 @@
 #include "MissionSetup.h"
+#include "daep/common/ConfigChecks.h"
+#include "daep/world/ReachableVolume.h"
 
 #include <filesystem>
 
@@ -76,6 +78,16 @@ world::WorldSpec loadWorld(const Settings& s, const std::string& experimentSourc
                          std::to_string(static_cast<int>(w.starts.size()) - 1) + " for world " +
                          w.name);
     return w;
+}
+
+double reachablePercent(const world::WorldSpec& world, const Settings& s,
+                        const mrpt::config::CConfigFileBase& config, double resolution) {
+    world::ReachParams p;
+    p.resolution = resolution;
+    p.robotRadius = requireNonNegative(ConfigReader(config, "planning"), "robot_radius");
+    p.climb = s.climb;
+    return world::computeReachableVolume(world, world.starts[std::size_t(s.start)], p)
+        .reachablePercent;
 }
 
 }  // namespace daep::mission

@@ -5,6 +5,10 @@
 
 #include "daep/world/WorldSpec.h"
 
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
 namespace daep::mission {
 
 class ExperimentConfig;
@@ -24,6 +28,13 @@ Settings loadSettings(const ExperimentConfig& experiment);
 /** A world name or path -> its file; a relative path is looked up next to the experiment first. */
 std::string resolveExperimentWorld(const std::string& worldName,
                                    const std::string& experimentSource);
+
+/**
+ * The most coverage the world allows from the experiment's start, on a grid of `resolution`
+ * ([planning] robot_radius, the climb): daep::world::computeReachableVolume.
+ */
+double reachablePercent(const world::WorldSpec& world, const Settings& s,
+                        const mrpt::config::CConfigFileBase& config, double resolution);
 
 /** The experiment's world, people removed in static mode, start index checked. */
 world::WorldSpec loadWorld(const Settings& s, const std::string& experimentSource);

@@ -14,6 +14,7 @@
 
 #include "MissionCore.h"
 #include "RawlogParams.h"
+#include "SceneExport.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
@@ -27,49 +28,13 @@ using Clock = std::chrono::steady_clock;
 /** Rawlog timestamps are seconds since 1970 as doubles: compare rawlog times with slack. */
 constexpr double kEps = 1e-6;
 
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-/** The tracks as people for the scene: where each is now, walking as it is predicted to. */
-std::vector<world::PersonState> tracksAsPeople(
-    double t, const std::vector<perception::PersonForecast>& tracks) {
-    std::vector<world::PersonState> out;
-    for (const perception::PersonForecast& f : tracks) {
-        world::PersonState p;
-        p.position = f.at(t).mean;
-        p.velocity = f.velocity();
-        p.heading = std::atan2(p.velocity.y(), p.velocity.x());
-        out.push_back(p);
-    }
-    return out;
-}
-
-/** The exploration box of a replay: a world's, or one around the first frame's pose. */
-struct ReplayBox {
-    Aabb box;
-    double volume = 0.0;
-    std::string worldName = "none";
-};
-
-ReplayBox replayBox(const ExperimentConfig& config, const RawlogParams& params,
-                    const Frame& first) {
-    ReplayBox r;
-    if (params.world.empty()) {
-        r.box.min = first.robot.position + params.boxMin;
-        r.box.max = first.robot.position + params.boxMax;
-        r.volume = r.box.volume();
-        return r;
-    }
-    Settings s = loadSettings(config);  // loadWorld resolves the name like [experiment] world
-    s.worldName = params.world;
-    s.mode = "static";
-    s.start = 0;
-    const world::WorldSpec w = loadWorld(s, config.source());
-    r.box = w.explorationBox;
-    r.volume = w.explorationVolume();
-    r.worldName = w.name;
-    return r;
+std::unique_ptr<FrameSource> openRawlog(const RawlogParams& params) {
+    if (params.posesFile.empty())
+        return std::make_unique<RawlogSource>(params.file, params.sensorLabel, params.poseLabel);
+    const RawlogSource::PosesFile poses{params.posesFile, params.posesOptical,
+                                        params.posesRelativeTime};
+    return std::make_unique<RawlogSource>(params.file, params.sensorLabel, params.poseLabel,
+                                          &poses);
 }
 
 Frame firstFrame(FrameSource& source, const RawlogParams& params) {
@@ -96,11 +61,9 @@ struct RawlogMission::Impl {
     Impl(const ExperimentConfig& config, std::unique_ptr<FrameSource> frames,
          const std::string& outputDir, std::ostream* logStream)
         : params(loadRawlogParams(config, !frames)),
-          source(frames ? std::move(frames)
-                        : std::make_unique<RawlogSource>(params.file, params.sensorLabel,
-                                                         params.poseLabel)),
+          source(frames ? std::move(frames) : openRawlog(params)),
           frame(firstFrame(*source, params)),
-          box(replayBox(config, params, frame)),
+          box(replayBox(config, params, frame.robot)),
           core(config, coreUse(), outputDir, logStream) {
         core.peopleInput.checkSourceCanFeed(frame, false, source->name());
         const auto* fromRawlog = dynamic_cast<const RawlogSource*>(source.get());
@@ -149,6 +112,13 @@ struct RawlogMission::Impl {
             while (nextPlan <= t + kEps)
                 nextPlan += params.planEvery;
         }
+    }
+
+    void noteFramesOutsidePoses() const {
+        const auto* fromRawlog = dynamic_cast<const RawlogSource*>(source.get());
+        if (fromRawlog && fromRawlog->framesOutsidePoses() > 0 && core.log)
+            *core.log << "note: " << params.posesFile << ": " << fromRawlog->framesOutsidePoses()
+                      << " depth frames outside its time span were skipped" << std::endl;
     }
 
     eval::RunSummary summarize(double wallTime) const {
@@ -212,6 +182,7 @@ eval::RunSummary RawlogMission::run() {
         do {
             m.handleFrame();
         } while (!stopRequested_ && m.source->next(m.frame));
+        m.noteFramesOutsidePoses();
         m.endReason = stopRequested_          ? "interrupted"
                       : m.params.file.empty() ? "end of frames"
                                               : "end of rawlog";

@@ -4,7 +4,9 @@
 
 #include <sstream>
 
+#include "MissionSetup.h"
 #include "daep/common/Config.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
 
@@ -50,7 +52,31 @@ RawlogParams loadRawlogParams(const ExperimentConfig& experiment, bool needFile)
     p.sensorLabel = optionalString(r, "sensor_label");
     p.poseLabel = r.requireString("pose_label");
     p.realtime = r.requireBool("realtime");
+    p.posesFile = resolveDataPath(optionalString(r, "poses_file"));
+    p.posesOptical = requireOneOf(r, "poses_file_frame", {"body", "optical"}) == "optical";
+    p.posesRelativeTime =
+        requireOneOf(r, "poses_file_clock", {"absolute", "relative"}) == "relative";
     return p;
+}
+
+ReplayBox replayBox(const ExperimentConfig& config, const RawlogParams& params,
+                    const FlatPose& firstPose) {
+    ReplayBox r;
+    if (params.world.empty()) {
+        r.box.min = firstPose.position + params.boxMin;
+        r.box.max = firstPose.position + params.boxMax;
+        r.volume = r.box.volume();
+        return r;
+    }
+    Settings s = loadSettings(config);  // loadWorld resolves the name like [experiment] world
+    s.worldName = params.world;
+    s.mode = "static";
+    s.start = 0;
+    const world::WorldSpec w = loadWorld(s, config.source());
+    r.box = w.explorationBox;
+    r.volume = w.explorationVolume();
+    r.worldName = w.name;
+    return r;
 }
 
 }  // namespace daep::mission

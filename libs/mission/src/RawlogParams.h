@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "daep/common/Types.h"
+
 namespace daep {
 class ConfigReader;
 }
@@ -16,9 +18,22 @@ struct RawlogParams {
     std::string file;  ///< [experiment] rawlog_file; empty when frames come from elsewhere
     std::string world, sensorLabel, poseLabel;
     double planEvery = 1.0;
-    bool realtime = false;  ///< play at the rawlog's own pace
+    bool realtime = false;      ///< play at the rawlog's own pace
+    std::string posesFile;      ///< robot poses from this TUM-format file; empty = from the rawlog
+    bool posesOptical = false;  ///< [rawlog] poses_file_frame = optical (else body)
+    bool posesRelativeTime = false;  ///< [rawlog] poses_file_clock = relative (else absolute)
     Eigen::Vector3d boxMin, boxMax;
 };
+
+/** The exploration box of a replay: [rawlog] world's, or box_min/box_max around `firstPose`. */
+struct ReplayBox {
+    Aabb box;
+    double volume = 0.0;
+    std::string worldName = "none";
+};
+
+ReplayBox replayBox(const ExperimentConfig& config, const RawlogParams& params,
+                    const FlatPose& firstPose);
 
 /** Throws InputError naming the file and key; rawlog_file is required only if `needFile`. */
 RawlogParams loadRawlogParams(const ExperimentConfig& experiment, bool needFile);

@@ -301,8 +301,8 @@ struct RawlogReader::Impl {
 
     /** A frame without a pose under poseLabel while the file has robot poses under others. */
     void checkPoseLabel() const {
-        if (hasPose || otherPoseLabels.empty())
-            return;
+        if (poseLabel.empty() || hasPose || otherPoseLabels.empty())
+            return;  // an empty label: the poses come from elsewhere
         std::string labels;
         for (const std::string& l : otherPoseLabels)
             labels += (labels.empty() ? "'" : ", '") + l + "'";

@@ -1,5 +1,7 @@
 #include "SceneExport.h"
 
+#include "daep/perception/PeopleTracker.h"
+
 #include <mrpt/img/CImage.h>
 #include <mrpt/img/color_maps.h>
 #include <mrpt/io/CFileGZOutputStream.h>
@@ -354,6 +356,19 @@ void SceneExporter::write(const SceneContent& content) {
                                       "skipping PNGs: "
                                    << what << std::endl;
     }
+}
+
+std::vector<world::PersonState> tracksAsPeople(
+    double t, const std::vector<perception::PersonForecast>& tracks) {
+    std::vector<world::PersonState> out;
+    for (const perception::PersonForecast& f : tracks) {
+        world::PersonState p;
+        p.position = f.at(t).mean;
+        p.velocity = f.velocity();
+        p.heading = std::atan2(p.velocity.y(), p.velocity.x());
+        out.push_back(p);
+    }
+    return out;
 }
 
 }  // namespace daep::mission

@@ -14,8 +14,15 @@
 namespace daep::mapping {
 class ExplorationMap;
 }
+namespace daep::perception {
+struct PersonForecast;
+}
 
 namespace daep::mission {
+
+/** Tracks drawn as people: where each is at `t`, walking as it is predicted to. */
+std::vector<world::PersonState> tracksAsPeople(
+    double t, const std::vector<perception::PersonForecast>& tracks);
 
 /** What one scene shows; the pointers must outlive SceneExporter::write(). */
 struct SceneContent {

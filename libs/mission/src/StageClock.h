@@ -9,6 +9,11 @@
 
 namespace daep::mission {
 
+/** Wall seconds since `t0`. */
+inline double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 /** The parts of a simulated mission whose wall time timing.json reports. */
 enum class Stage { Render, People, Map, World, Checks, Planning, Recording, Count };
 
