@@ -4,6 +4,8 @@
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationRobotPose.h>
@@ -120,6 +122,13 @@ std::vector<CSerializable::Ptr> asSensoryFrames(const std::vector<CSerializable:
         sf->insert(obs);
     }
     return out;
+}
+
+/** The dataset's first `count` objects in the sensory-frames format, as a file. */
+std::string asSensoryFramesFile(const std::string& name, std::size_t count) {
+    const std::string path = (freshDir(name) / "sf.rawlog").string();
+    writeObjects(path, asSensoryFrames(readObjects(kDataset, count)));
+    return path;
 }
 
 /** Recording a simulated run and replaying it with the same settings gives the same map. */
@@ -553,4 +562,79 @@ TEST(RawlogSource, OpticalCameraPosesOfATumFileMapLikeTheRobotPoses) {
     });
     EXPECT_NE(e.find("bad.txt:2: expected 'timestamp tx ty tz qx qy qz qw'"), std::string::npos)
         << e;
+}
+
+/**
+ * The dataset's first `count` objects in the actions / sensory-frames format, each frame's
+ * drone pose given instead as a robot movement from the previous one (`movement` makes the
+ * action from the increment), the way MRPT logs odometry there.
+ */
+template <typename Movement>
+std::string asMovements(const std::string& name, std::size_t count, Movement&& movement) {
+    std::vector<CSerializable::Ptr> out;
+    mrpt::obs::CSensoryFrame::Ptr sf;
+    mrpt::Clock::time_point stamp{};
+    mrpt::poses::CPose3D previous;
+    for (const auto& o : readObjects(kDataset, count)) {
+        auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(o);
+        if (!sf || obs->timestamp != stamp) {
+            out.push_back(mrpt::obs::CActionCollection::Create());
+            sf = mrpt::obs::CSensoryFrame::Create();
+            out.push_back(sf);
+            stamp = obs->timestamp;
+        }
+        auto pose = std::dynamic_pointer_cast<mrpt::obs::CObservationRobotPose>(o);
+        if (pose && pose->sensorLabel == "DRONE_POSE") {
+            // The action collection before this frame's sensory frame carries the movement.
+            auto& actions =
+                *std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(out[out.size() - 2]);
+            actions.insert(*movement(pose->pose.mean - previous));
+            previous = pose->pose.mean;
+            continue;
+        }
+        sf->insert(obs);
+    }
+    const std::string path = (freshDir(name) / "movements.rawlog").string();
+    writeObjects(path, out);
+    return path;
+}
+
+/** Robot movement actions (2D and 3D) give the poses: pose_label = ACTIONS integrates them. */
+TEST(RawlogSource, RobotMovementActionsGiveThePoseIntegrated) {
+    const auto move3d = [](const mrpt::poses::CPose3D& change) {
+        auto a = mrpt::obs::CActionRobotMovement3D::Create();
+        a->poseChange.mean = change;
+        return a;
+    };
+    const std::string rawlog3d = asMovements("move3d", 60, move3d);
+    const double fromPoses = replayedKnownVolume(asSensoryFramesFile("sf60", 60), {}, "mvA");
+    const double fromActions = replayedKnownVolume(rawlog3d, {"rawlog.pose_label=ACTIONS"}, "mvB");
+    std::cout << "3D movements: known " << fromActions << " m^3, poses " << fromPoses << "\n";
+    EXPECT_GT(fromPoses, 20.0);
+    EXPECT_NEAR(fromActions, fromPoses, 0.002 * fromPoses);
+
+    // Without pose_label = ACTIONS the replay names what the file has.
+    const std::string e = inputErrorOf([&] { replayedKnownVolume(rawlog3d, {}, "mvC"); });
+    EXPECT_NE(e.find("labelled 'ACTIONS'"), std::string::npos) << e;
+
+    // 2D odometry increments: x, y and heading, on the floor.
+    const auto move2d = [](const mrpt::poses::CPose3D& change) {
+        auto a = mrpt::obs::CActionRobotMovement2D::Create();
+        a->computeFromOdometry(mrpt::poses::CPose2D(change.x(), change.y(), change.yaw()),
+                               mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
+        return a;
+    };
+    const double fromFloorPoses = replayedKnownVolume(
+        withDronePoses("floor60", 60,
+                       [](const mrpt::obs::CObservationRobotPose& p) {
+                           auto q = mrpt::obs::CObservationRobotPose::Create(p);
+                           q->pose.mean = mrpt::poses::CPose3D(p.pose.mean.x(), p.pose.mean.y(),
+                                                               0.0, p.pose.mean.yaw(), 0, 0);
+                           return CSerializable::Ptr(q);
+                       }),
+        {}, "mvD");
+    const double from2d = replayedKnownVolume(asMovements("move2d", 60, move2d),
+                                              {"rawlog.pose_label=ACTIONS"}, "mvE");
+    std::cout << "2D movements: known " << from2d << " m^3, floor poses " << fromFloorPoses << "\n";
+    EXPECT_NEAR(from2d, fromFloorPoses, 0.002 * fromFloorPoses);
 }

@@ -191,13 +191,18 @@ struct RawlogObjects::Impl {
         expectEndFlag(h, "CSensoryFrame");
     }
 
-    void readActionCollection(const ObjectHeader& h) {
+    void readActionCollection(const ObjectHeader& h,
+                              std::vector<std::shared_ptr<mrpt::obs::CAction>>* actions) {
         if (h.version != 0)
             throw MalformedObject("is a CActionCollection of serialization version " +
                                   std::to_string(h.version) + ", which MRPT 2.5 cannot read");
         in.take(h.bytes);
-        for (std::uint32_t i = 0, n = elementCount(); i < n; ++i)
-            readElement("CActionCollection", CLASS_ID(mrpt::obs::CAction), "an action");
+        for (std::uint32_t i = 0, n = elementCount(); i < n; ++i) {
+            auto action = std::dynamic_pointer_cast<mrpt::obs::CAction>(
+                readElement("CActionCollection", CLASS_ID(mrpt::obs::CAction), "an action"));
+            if (actions)
+                actions->push_back(std::move(action));
+        }
         expectEndFlag(h, "CActionCollection");
     }
 
@@ -216,7 +221,8 @@ RawlogObjects::RawlogObjects(mrpt::io::CStream& file) : impl_(std::make_unique<I
 
 RawlogObjects::~RawlogObjects() = default;
 
-bool RawlogObjects::readNext(std::vector<std::shared_ptr<mrpt::obs::CObservation>>& observations) {
+bool RawlogObjects::readNext(std::vector<std::shared_ptr<mrpt::obs::CObservation>>& observations,
+                             std::vector<std::shared_ptr<mrpt::obs::CAction>>* actions) {
     const auto h = peekHeader(impl_->in);
     if (!h)
         return false;
@@ -224,7 +230,7 @@ bool RawlogObjects::readNext(std::vector<std::shared_ptr<mrpt::obs::CObservation
     if (&id == CLASS_ID(mrpt::obs::CSensoryFrame))
         impl_->readSensoryFrame(*h, observations);
     else if (&id == CLASS_ID(mrpt::obs::CActionCollection))
-        impl_->readActionCollection(*h);
+        impl_->readActionCollection(*h, actions);
     else
         impl_->readObservation(*h, id, observations);
     return true;

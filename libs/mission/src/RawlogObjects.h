@@ -11,8 +11,9 @@ namespace mrpt::io {
 class CStream;
 }
 namespace mrpt::obs {
+class CAction;
 class CObservation;
-}
+}  // namespace mrpt::obs
 
 namespace daep::mission {
 
@@ -48,11 +49,12 @@ public:
     RawlogObjects& operator=(const RawlogObjects&) = delete;
 
     /**
-     * Reads the next object and appends its observations (none for a CActionCollection);
-     * false at a clean end of the file. Throws TruncatedObject, MalformedObject, or what MRPT
-     * throws for a corrupt observation.
+     * Reads the next object and appends its observations, and the actions of a
+     * CActionCollection to `actions` when given; false at a clean end of the file. Throws
+     * TruncatedObject, MalformedObject, or what MRPT throws for a corrupt observation.
      */
-    bool readNext(std::vector<std::shared_ptr<mrpt::obs::CObservation>>& observations);
+    bool readNext(std::vector<std::shared_ptr<mrpt::obs::CObservation>>& observations,
+                  std::vector<std::shared_ptr<mrpt::obs::CAction>>* actions = nullptr);
 
 private:
     struct Impl;

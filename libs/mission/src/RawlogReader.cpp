@@ -2,6 +2,8 @@
 
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationRobotPose.h>
@@ -79,6 +81,9 @@ FlatPose flatPose(const mrpt::poses::CPose3D& p) {
     f.yaw = p.yaw();
     return f;
 }
+
+/** The label of the robot poses integrated from robot movement actions. */
+const std::string kActionsLabel = "ACTIONS";
 
 /** i for a label PERSON_<i>, else -1. */
 int personIndex(const std::string& label) {
@@ -158,6 +163,7 @@ struct RawlogReader::Impl {
     bool hasPose = false;
     std::map<int, FlatPose> people;
     std::set<std::string> otherPoseLabels;  ///< robot poses seen under labels not asked for
+    mrpt::poses::CPose3D actionPose;        ///< the robot movements so far, integrated
     std::size_t framesEmitted = 0;
     double lastFrameStamp = 0.0;
 
@@ -172,9 +178,10 @@ struct RawlogReader::Impl {
     /** Queues the observations of the next object; false at a clean end of the file. */
     bool readObject() {
         std::vector<ObservationPtr> observations;
+        std::vector<std::shared_ptr<mrpt::obs::CAction>> actions;
         try {
             const ReadingObject reading;
-            if (!objectStream.readNext(observations))
+            if (!objectStream.readNext(observations, &actions))
                 return false;
         } catch (const TruncatedObject&) {
             failTruncated();
@@ -191,7 +198,34 @@ struct RawlogReader::Impl {
         }
         ++objects;
         queue.insert(queue.end(), observations.begin(), observations.end());
+        for (const auto& action : actions)
+            integrateMovement(*action);
         return true;
+    }
+
+    /**
+     * A robot movement action (actions / sensory-frames format) moves the odometry pose by its
+     * increment; the pose joins the queue as a robot pose labelled ACTIONS, in file order.
+     */
+    void integrateMovement(const mrpt::obs::CAction& action) {
+        mrpt::poses::CPose3D change;
+        if (const auto* m2 = dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(&action))
+            change = mrpt::poses::CPose3D(m2->poseChange ? m2->poseChange->getMeanVal()
+                                                         : m2->rawOdometryIncrementReading);
+        else if (const auto* m3 = dynamic_cast<const mrpt::obs::CActionRobotMovement3D*>(&action))
+            change = m3->poseChange.mean;
+        else
+            return;
+        if (!finitePose(change))
+            fail("corrupt rawlog: a robot movement in " + where(objects) +
+                 " is not finite or lies beyond " +
+                 std::to_string(static_cast<int>(kMaxCoordinate)) + " m");
+        actionPose = actionPose + change;
+        auto pose = mrpt::obs::CObservationRobotPose::Create();
+        pose->sensorLabel = kActionsLabel;
+        pose->timestamp = action.timestamp;
+        pose->pose.mean = actionPose;
+        queue.push_back(pose);
     }
 
     [[noreturn]] void failTruncated() const {
@@ -359,7 +393,9 @@ bool RawlogReader::next(RawlogFrame& frame) {
     while (const ObservationPtr o = m.nextObservation()) {
         const double stamp = mrpt::Clock::toDouble(o->timestamp);
         auto depth = m.asDepthFrame(o);
-        if (m.pending && (depth || stamp > m.pendingStamp)) {
+        // A movement after a frame is the next frame's: the pending one goes out first.
+        const bool movement = !depth && o->sensorLabel == kActionsLabel;
+        if (m.pending && (depth || stamp > m.pendingStamp || movement)) {
             m.queue.push_front(o);
             m.emit(frame);
             return true;
