@@ -34,22 +34,22 @@ SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
 
 bool seesPast(const mrpt::obs::CObservation3DRangeScan& obs, const SensorFrame& frame,
               const Eigen::Vector3f& point, float margin) {
-    const Eigen::Vector3f d = point - frame.origin;
-    const float depth = d.dot(frame.forward);
-    if (!obs.hasRangeImage || depth <= 1e-3f)
+    return seesPast(DepthRays(obs), obs, frame, point, margin);
+}
+
+bool seesPast(const DepthRays& rays, const mrpt::obs::CObservation3DRangeScan& obs,
+              const SensorFrame& frame, const Eigen::Vector3f& point, float margin) {
+    const std::optional<DepthRays::Projection> p = rays.project(frame, point);
+    if (!obs.hasRangeImage || !p)
         return false;
-    const auto& cam = obs.cameraParams;
-    const float ky = d.dot(frame.left) / depth, kz = d.dot(frame.up) / depth;
-    const int u = int(std::lround(cam.cx() - ky * cam.fx()));
-    const int v = int(std::lround(cam.cy() - kz * cam.fy()));
-    if (u < 0 || v < 0 || u >= int(obs.rangeImage.cols()) || v >= int(obs.rangeImage.rows()))
+    const int u = int(std::lround(p->col));
+    const int v = int(std::lround(p->row));
+    if (!rays.inImage(v, u))
         return false;
-    float measured = float(obs.rangeImage(v, u)) * obs.rangeUnits;
+    const float measured = float(obs.rangeImage(v, u)) * obs.rangeUnits;
     if (measured <= 0.0f)
-        return depth < obs.maxRange;
-    if (!obs.range_is_depth)
-        measured /= std::sqrt(1.0f + ky * ky + kz * kz);
-    return measured > depth + margin;
+        return p->depth < obs.maxRange;
+    return rays.depthOf(measured, p->left, p->up) > p->depth + margin;
 }
 
 std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3DRangeScan& obs,
@@ -124,14 +124,12 @@ void ExplorationMap::addNoReturnRays(const mrpt::obs::CObservation3DRangeScan& o
         1, int(0.5 * params_.resolution * std::min(cam.fx(), cam.fy()) / params_.maxRange));
     // Beyond maxRange: the ray is cleared up to maxRange and no end point is marked occupied.
     const float beyond = float(params_.maxRange + 2.0 * params_.resolution);
-    for (int v = 0; v < int(image.rows()); v += stride) {
-        const float kz = float((cam.cy() - v) / cam.fy());
-        for (int u = 0; u < int(image.cols()); u += stride) {
+    const DepthRays rays(obs);
+    for (int v = 0; v < rays.rows(); v += stride) {
+        for (int u = 0; u < rays.cols(); u += stride) {
             if (image(v, u) > 0)
                 continue;
-            const float ky = float((cam.cx() - u) / cam.fx());
-            const Eigen::Vector3f dir =
-                (frame.forward + kz * frame.up + ky * frame.left).normalized();
+            const Eigen::Vector3f dir = rays.ray(frame, v, u).normalized();
             const Eigen::Vector3f end = frame.origin + beyond * dir;
             impl_->cloud.push_back(octomap::point3d(end.x(), end.y(), end.z()));
         }

@@ -2,7 +2,6 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
-#include <mrpt/poses/CPose3D.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -14,6 +13,8 @@
 #include "StageClock.h"
 #include "daep/common/Config.h"
 #include "daep/common/Error.h"
+#include "daep/mapping/DepthRays.h"
+#include "daep/mapping/DepthUnprojection.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/PeopleInput.h"
@@ -22,36 +23,24 @@
 namespace daep::mission {
 namespace {
 
-/** Sensor axes in the world and the pinhole intrinsics of one depth frame. */
+/** A depth frame's sensor in the world and its rays. */
 struct View {
-    Eigen::Vector3d origin, forward, left, up;
-    double fx = 1, fy = 1, cx = 0, cy = 0;
-    int cols = 0, rows = 0;
+    mapping::SensorFrame frame;
+    mapping::DepthRays rays;
 
-    View(const mrpt::obs::CObservation3DRangeScan& obs, const FlatPose& robot) {
-        const mrpt::poses::CPose3D robotPose(robot.position.x(), robot.position.y(),
-                                             robot.position.z(), robot.yaw, 0.0, 0.0);
-        const mrpt::poses::CPose3D sensor = robotPose + obs.sensorPose;
-        const auto& r = sensor.getRotationMatrix();
-        forward = {r(0, 0), r(1, 0), r(2, 0)};
-        left = {r(0, 1), r(1, 1), r(2, 1)};
-        up = {r(0, 2), r(1, 2), r(2, 2)};
-        origin = {sensor.x(), sensor.y(), sensor.z()};
-        fx = obs.cameraParams.fx();
-        fy = obs.cameraParams.fy();
-        cx = obs.cameraParams.cx();
-        cy = obs.cameraParams.cy();
-        cols = int(obs.rangeImage.cols());
-        rows = int(obs.rangeImage.rows());
-    }
+    View(const mrpt::obs::CObservation3DRangeScan& obs, const FlatPose& robot)
+        : frame(mapping::sensorFrameInWorld(obs, robot)), rays(obs) {}
 
-    /** Ray through pixel (u, v) scaled so that its forward component is 1: t is depth. */
+    Eigen::Vector3d origin() const { return frame.origin.cast<double>(); }
+
+    /** Ray through pixel (u, v), in the image or beyond it, per metre of depth. */
     Eigen::Vector3d ray(double u, double v) const {
-        return forward + ((cy - v) / fy) * up + ((cx - u) / fx) * left;
+        return (frame.forward + rays.upAt(float(v)) * frame.up + rays.leftAt(float(u)) * frame.left)
+            .cast<double>();
     }
 
     double horizontalDistance(const Eigen::Vector2d& p) const {
-        return (p - origin.head<2>()).norm();
+        return (p - origin().head<2>()).norm();
     }
 };
 
@@ -89,44 +78,32 @@ struct Body {
     }
 };
 
-/** Depth (m along the optical axis) of pixel (u, v), 0 for no return. */
-double depthAt(const mrpt::obs::CObservation3DRangeScan& obs, const View& view, int u, int v) {
-    const double d = double(obs.rangeImage(v, u)) * obs.rangeUnits;
-    if (obs.range_is_depth || d <= 0)
-        return d;
-    return d / view.ray(u, v).norm();
-}
-
 /**
  * Share of the body's projection (over an image extended past its borders) whose pixels return
  * the body itself: 1 for a fully visible person, lower when occluded or cut by the image
  * border, 0 when behind the camera.
  */
-double visibleFraction(const mrpt::obs::CObservation3DRangeScan& obs, const View& view,
-                       const Body& body) {
+double visibleFraction(const View& view, const Body& body) {
     double uMin = 1e9, uMax = -1e9, vMin = 1e9, vMax = -1e9;
     for (int i = 0; i < 8; ++i) {
-        const Eigen::Vector3d rel = body.corner(i) - view.origin;
-        const double a = rel.dot(view.forward);
-        if (a < 0.05)
+        const auto p = view.rays.project(view.frame, body.corner(i).cast<float>(), 0.05f);
+        if (!p)
             return 0.0;
-        const double u = view.cx - view.fx * rel.dot(view.left) / a;
-        const double v = view.cy - view.fy * rel.dot(view.up) / a;
-        uMin = std::min(uMin, u), uMax = std::max(uMax, u);
-        vMin = std::min(vMin, v), vMax = std::max(vMax, v);
+        uMin = std::min(uMin, p->col), uMax = std::max(uMax, p->col);
+        vMin = std::min(vMin, p->row), vMax = std::max(vMax, p->row);
     }
-    const int step = std::max(1, view.cols / 160);
+    const int rows = view.rays.rows(), cols = view.rays.cols();
+    const int step = std::max(1, cols / 160);
     const auto clampTo = [](double x, int n) { return int(std::clamp(x, -double(n), 2.0 * n)); };
     std::size_t total = 0, visible = 0;
     constexpr double kTolerance = 0.1;  // m: noise and the depth quantisation
-    for (int v = clampTo(vMin, view.rows); v <= clampTo(vMax, view.rows); v += step) {
-        for (int u = clampTo(uMin, view.cols); u <= clampTo(uMax, view.cols); u += step) {
-            const double t = body.hit(view.origin, view.ray(u, v));
+    for (int v = clampTo(vMin, rows); v <= clampTo(vMax, rows); v += step) {
+        for (int u = clampTo(uMin, cols); u <= clampTo(uMax, cols); u += step) {
+            const double t = body.hit(view.origin(), view.ray(u, v));
             if (t < 0)
                 continue;
             ++total;
-            if (u >= 0 && v >= 0 && u < view.cols && v < view.rows &&
-                std::abs(depthAt(obs, view, u, v) - t) < kTolerance)
+            if (view.rays.inImage(v, u) && std::abs(view.rays.depth(v, u) - t) < kTolerance)
                 ++visible;
         }
     }
@@ -187,8 +164,8 @@ public:
             const Body body{{person.position.x(), person.position.y(), 0.5 * bodySize_.z()},
                             0.5 * bodySize_,
                             person.heading};
-            eligible.push_back(inRange && visibleFraction(*frame.depth, view, body) >=
-                                              options_.minVisibleFraction);
+            eligible.push_back(inRange &&
+                               visibleFraction(view, body) >= options_.minVisibleFraction);
             score_.occludedOrTruncated += inRange && !eligible.back();
         }
         const std::vector<int> truthOf = matchDetections(truth, detections, options_.matchDistance);

@@ -1,11 +1,13 @@
 #include "daep/mission/PeopleInput.h"
 
 #include <cmath>
+#include <memory>
 
 #include "ComponentParams.h"
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
+#include "daep/mapping/DepthRays.h"
 #include "daep/mapping/DepthUnprojection.h"
 #include "daep/world/RayCaster.h"
 
@@ -36,13 +38,14 @@ perception::PeopleTracker::EmptyTest seenEmptyIn(const DepthView& view,
         return {};
     const mapping::SensorFrame sensor = mapping::sensorFrameInWorld(*view.frame, view.robot);
     const mrpt::obs::CObservation3DRangeScan& frame = *view.frame;
-    return [&frame, sensor, bodySize](const Eigen::Vector2d& xy) {
+    const auto rays = std::make_shared<const mapping::DepthRays>(frame);
+    return [&frame, rays, sensor, bodySize](const Eigen::Vector2d& xy) {
         const Eigen::Vector3f middle(float(xy.x()), float(xy.y()), float(0.5 * bodySize.z()));
         Eigen::Vector3f across = sensor.up.cross(middle - sensor.origin);
         across = across.norm() > 1e-6f ? across.normalized() : sensor.left;
         const float half = float(0.3 * bodySize.x());
         for (const float side : {-half, 0.0f, half})
-            if (!mapping::seesPast(frame, sensor, middle + side * across, float(0.1)))
+            if (!mapping::seesPast(*rays, frame, sensor, middle + side * across, float(0.1)))
                 return false;
         return true;
     };

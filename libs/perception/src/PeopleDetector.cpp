@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "daep/mapping/DepthRays.h"
 #include "daep/mapping/DepthUnprojection.h"
 #include "daep/mapping/ExplorationMap.h"
 
@@ -205,24 +206,22 @@ private:
         const auto& cam = obs.cameraParams;
         fx = float(cam.fx());
         const float fy = float(cam.fy());
-        const float cx = float(cam.cx()), cy = float(cam.cy());
         pixelArea = float(stride * stride) / (fx * fy);  // times depth^2: m^2 per pixel
         depth.create(rows, cols);
         classes.create(rows, cols);
         points.resize(std::size_t(rows * cols));
         const float maxRange = float(params.maxRange);
+        const mapping::DepthRays rays(obs);
         for (int r = 0; r < rows; ++r) {
             const int v = r * stride;
-            const float kz = (cy - float(v)) / fy;
+            const float kz = rays.up(v);
             const Eigen::Vector3f rowDir = frame.forward + kz * frame.up;
             float* depthRow = depth.ptr<float>(r);
             std::uint8_t* classRow = classes.ptr<std::uint8_t>(r);
             for (int c = 0; c < cols; ++c) {
                 const int u = c * stride;
-                const float ky = (cx - float(u)) / fx;
-                float d = float(image(v, u)) * obs.rangeUnits;
-                if (!obs.range_is_depth)
-                    d /= std::sqrt(1.0f + ky * ky + kz * kz);
+                const float ky = rays.left(u);
+                const float d = rays.depthOf(float(image(v, u)) * obs.rangeUnits, ky, kz);
                 if (!(d > 0.0f && d <= maxRange)) {
                     depthRow[c] = 0.0f;
                     classRow[c] = kIgnored;

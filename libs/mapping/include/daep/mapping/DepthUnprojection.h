@@ -11,6 +11,8 @@ class CObservation3DRangeScan;
 
 namespace daep::mapping {
 
+class DepthRays;
+
 /** Sensor axes and position in the world (X forward, Y left, Z up), float for pixel loops. */
 struct SensorFrame {
     Eigen::Vector3f forward, left, up, origin;
@@ -28,6 +30,9 @@ SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
  */
 bool seesPast(const mrpt::obs::CObservation3DRangeScan& obs, const SensorFrame& frame,
               const Eigen::Vector3f& point, float margin);
+/** The same with the frame's rays already tabulated (many points of one frame). */
+bool seesPast(const DepthRays& rays, const mrpt::obs::CObservation3DRangeScan& obs,
+              const SensorFrame& frame, const Eigen::Vector3f& point, float margin);
 
 /**
  * World-frame points of every pixel with a return (depth > 0), in row-major pixel order: the
