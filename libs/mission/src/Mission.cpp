@@ -10,14 +10,12 @@
 
 #include <octomap/OcTree.h>
 
+#include "FlightLoop.h"
 #include "MemoryLog.h"
 #include "MissionCore.h"
 #include "SimulatorSource.h"
-#include "daep/common/Config.h"
-#include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
-#include "daep/world/ReachableVolume.h"
 
 namespace daep::mission {
 namespace {
@@ -28,7 +26,7 @@ constexpr double kEps = 1e-9;
 
 }  // namespace
 
-struct Mission::Impl {
+struct Mission::Impl : FlightLoop::Mission {
     Impl(const ExperimentConfig& config, const std::string& outputDir, std::ostream* logStream)
         : configForReach(&config.config()),
           sim(config, &core.stages),  // only its address: the core is built next
@@ -52,12 +50,25 @@ struct Mission::Impl {
     bool exploring() const { return exploreStart >= 0; }
     double explorationTime() const { return exploring() ? now() - exploreStart : 0.0; }
     bool timeUp() const { return exploring() && explorationTime() >= settings().maxTime - kEps; }
-    bool stopping() const { return timeUp() || (stopFlag && *stopFlag); }
 
-    /** The frame just taken through the one per-frame step, then the scene when one is due. */
-    void processFrame() {
-        const CameraSight sight = sim.sight();
-        core.step.process(sim.frame(), &sight);
+    bool stopping() const override { return timeUp() || (stopFlag && *stopFlag); }
+
+    double stepLimit(double end) const override {
+        const double limit = end - now();
+        return exploring() ? std::min(limit, settings().maxTime - explorationTime()) : limit;
+    }
+
+    void stepped(const SimulatorSource::Step& step, bool flying) override {
+        if (flying && exploring())
+            pathLength += step.moved;
+        const auto& events = sim.monitor().events();
+        while (collisionTracked.size() < events.size())
+            collisionTracked.push_back(
+                trackedAtCollision(events[collisionTracked.size()].personIndex));
+    }
+
+    /** The scene, when one is due. */
+    void frameProcessed() override {
         if (core.outputs.scene && core.outputs.sceneEvery > 0 && now() + kEps >= nextScene) {
             core.scene.write(sceneContent());
             nextScene += core.outputs.sceneEvery;
@@ -71,7 +82,7 @@ struct Mission::Impl {
         return c;
     }
 
-    void recordDueSamples() {
+    void recordDue() override {
         if (!exploring())
             return;
         core.recordDueSamples(explorationTime(), pathLength, sim.monitor().personCollisions(), [&] {
@@ -85,102 +96,6 @@ struct Mission::Impl {
             memory.addDue(core.map.knownVolumeInBox(), core.map.octree().size());
     }
 
-    /**
-     * Advances the world by dt (or until the drone reaches its goal when flying); returns true
-     * when the drone reached its goal.
-     */
-    bool advance(double dt, bool flying) { return advanceUntil(now() + dt, flying); }
-
-    /**
-     * Advances the world to `end`, or until the drone reaches its goal when flying (true), or,
-     * while hovering with watchingHover, until the planner asks to evade (pendingEvasion).
-     */
-    bool advanceUntil(double end, bool flying) {
-        while (now() < end - kEps && !stopping()) {
-            double limit = end - now();
-            if (exploring())
-                limit = std::min(limit, settings().maxTime - explorationTime());
-            const std::size_t episodes = sim.monitor().events().size();
-            const SimulatorSource::Step step = sim.step(limit, flying);
-            if (flying && exploring())
-                pathLength += step.moved;
-            for (std::size_t e = episodes; e < sim.monitor().events().size(); ++e)
-                collisionTracked.push_back(
-                    trackedAtCollision(sim.monitor().events()[e].personIndex));
-            if (step.frameTaken)
-                processFrame();
-            recordDueSamples();
-            if (step.reached)
-                return true;
-            if (step.frameTaken && !flying && watchingHover && core.driver.usesPeople()) {
-                const auto timed = core.stages.time(Stage::Checks);
-                pendingEvasion = core.driver.planner().evasion(context(), hoverSafeUntil);
-                if (pendingEvasion)
-                    return false;
-            }
-        }
-        return false;
-    }
-
-    /**
-     * Hovers until `end` (while the planner plans, or waiting). At every frame a people-aware
-     * planner is asked whether hovering here stays safe, and its escape is flown at once when
-     * not; hovering then goes on to `end`. Returns whether the drone evaded (it moved).
-     */
-    bool hoverUntil(double end) {
-        // Hovering must stay safe until what is planned meanwhile can act on it: the end of
-        // this hover, another as long (a plan dropped as stale), and a frame.
-        hoverSafeUntil = end + (end - now()) + sim.framePeriod();
-        bool evaded = false;
-        while (now() < end - kEps && !stopping()) {
-            watchingHover = true;
-            advanceUntil(end, false);
-            watchingHover = false;
-            if (!pendingEvasion)
-                break;
-            const planning::Plan escape = std::move(*pendingEvasion);
-            pendingEvasion.reset();
-            evaded = true;
-            flyEscape(escape);
-        }
-        return evaded;
-    }
-
-    /** Flies to the goal; returns false when the planner aborted the flight. */
-    bool flyTo(const FlatPose& goal, const planning::Plan* plan = nullptr, std::size_t index = 0) {
-        sim.drone().setGoal(goal);
-        bool aborted = false;
-        while (sim.drone().hasGoal() && !stopping() && !aborted) {
-            const std::uint64_t mapBefore = core.map.revision();
-            advance(sim.framePeriod(), true);
-            const bool recheck = core.map.revision() != mapBefore || core.driver.usesPeople();
-            if (plan && sim.drone().hasGoal() && recheck) {
-                const auto timed = core.stages.time(Stage::Checks);
-                aborted = !core.driver.planner().keepFlying(context(), *plan, index);
-            }
-        }
-        sim.drone().clearGoal();
-        return !aborted;
-    }
-
-    void takeOffAndLookAround() {
-        sim.takeFirstFrame();
-        processFrame();
-        FlatPose goal = sim.drone().pose();
-        goal.position.z() += settings().climb;
-        flyTo(goal);
-        for (int quarter = 1; quarter <= 4; ++quarter) {
-            goal.yaw = wrapAngle(quarter * M_PI / 2.0);
-            flyTo(goal);
-        }
-    }
-
-    void flyEscape(const planning::Plan& escape) {
-        ++hoverEvasions;
-        for (std::size_t i = 0; i < escape.waypoints.size() && !stopping(); ++i)
-            flyTo(escape.waypoints[i].pose, &escape, i);
-    }
-
     /** Whether a track lay on the person (within a body's width) as the collision began. */
     int trackedAtCollision(int person) const {
         if (person < 0 || !core.driver.usesPeople())
@@ -192,40 +107,10 @@ struct Mission::Impl {
         return 0;
     }
 
-    planning::PlanningContext context() const {
-        return core.driver.context(now(), sim.drone().pose());
-    }
-
-    /**
-     * One plan, made from the state when planning began; the world goes on for the time it
-     * takes, with the drone hovering and evading as needed (hoverUntil). nullopt when the plan
-     * is stale by the time it is done: the drone evaded meanwhile, or the path is no longer
-     * safe against what the frames taken meanwhile predict, its times counted from now.
-     */
-    std::optional<planning::Plan> planOnce() {
-        PlannerDriver::Call made =
-            core.driver.planFlight(now(), sim.drone().pose(), explorationTime());
-        const double framesBefore = sim.nextFrameTime();
-        if (hoverUntil(now() + made.chargedSec))
-            return std::nullopt;
-        const bool newFrames = sim.nextFrameTime() != framesBefore;
-        if (newFrames && core.driver.usesPeople() && !made.plan.waypoints.empty() &&
-            !startsSafely(made.plan)) {
-            ++stalePlans;
-            return std::nullopt;
-        }
-        return std::move(made.plan);
-    }
-
-    bool startsSafely(const planning::Plan& plan) {
-        const auto timed = core.stages.time(Stage::Checks);
-        return core.driver.planner().startsSafely(context(), plan);
-    }
-
     void explore() {
         int failedPlans = 0;
         while (!stopping()) {
-            const std::optional<planning::Plan> made = planOnce();
+            const std::optional<planning::Plan> made = flight.planOnce(explorationTime());
             if (!made)
                 continue;  // stale by the time it was done: plan again from here
             const planning::Plan& plan = *made;
@@ -235,7 +120,8 @@ struct Mission::Impl {
                 return;
             }
             if (plan.waypoints.empty() && plan.waitSeconds > 0) {
-                hoverUntil(now() + plan.waitSeconds);  // the planner waits for people to pass
+                flight.hoverUntil(now() +
+                                  plan.waitSeconds);  // the planner waits for people to pass
                 continue;
             }
             if (plan.waypoints.empty()) {
@@ -247,12 +133,8 @@ struct Mission::Impl {
                 continue;
             }
             failedPlans = 0;
-            for (std::size_t i = 0; i < plan.waypoints.size() && !stopping(); ++i) {
-                if (!flyTo(plan.waypoints[i].pose, &plan, i)) {
-                    ++abortedPaths;
-                    break;
-                }
-            }
+            if (!flight.fly(plan))
+                ++abortedPaths;
             core.recorder.flush();
         }
         endReason = timeUp() ? "time limit" : "interrupted";
@@ -270,8 +152,8 @@ struct Mission::Impl {
         s.collisions = monitor.personCollisions();
         s.staticCollisions = monitor.staticCollisions();
         s.abortedPaths = abortedPaths;
-        s.hoverEvasions = hoverEvasions;
-        s.stalePlans = stalePlans;
+        s.hoverEvasions = flight.hoverEvasions();
+        s.stalePlans = flight.stalePlans();
         s.finished = finished;
         s.endReason = endReason;
         s.explorationStart = exploreStart;
@@ -295,6 +177,7 @@ struct Mission::Impl {
     SimulatorSource sim;
     MissionCore core;
     MemoryLog memory;
+    FlightLoop flight{sim, core, *this};
     std::vector<int> collisionTracked;  ///< per monitor event, see trackedAtCollision
     double nextScene = 0.0;
     const std::atomic<bool>* stopFlag = nullptr;
@@ -302,11 +185,6 @@ struct Mission::Impl {
     double exploreStart = -1.0;
     double pathLength = 0.0;
     int abortedPaths = 0;
-    int hoverEvasions = 0;  ///< escapes flown while hovering (planning, waiting)
-    int stalePlans = 0;     ///< plans unsafe against the frames taken while they were made
-    bool watchingHover = false;
-    double hoverSafeUntil = 0.0;  ///< while watchingHover: how long hovering must stay safe
-    std::optional<planning::Plan> pendingEvasion;
     bool finished = false;
     std::string endReason;
 };
@@ -323,9 +201,9 @@ eval::RunSummary Mission::run() {
     const auto t0 = Clock::now();
     std::exception_ptr failure;
     try {
-        m.takeOffAndLookAround();
+        m.flight.takeOffAndLookAround(m.settings().climb);
         m.exploreStart = m.now();
-        m.recordDueSamples();
+        m.recordDue();
         if (!stopRequested_)
             m.explore();
     } catch (const std::exception& e) {
