@@ -20,7 +20,6 @@
 namespace daep::mission {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 constexpr double kEps = 1e-9;
 
@@ -198,26 +197,18 @@ Mission::~Mission() = default;
 
 eval::RunSummary Mission::run() {
     Impl& m = *impl_;
-    const auto t0 = Clock::now();
-    std::exception_ptr failure;
-    try {
-        m.flight.takeOffAndLookAround(m.settings().climb);
-        m.exploreStart = m.now();
-        m.recordDue();
-        if (!stopRequested_)
-            m.explore();
-    } catch (const std::exception& e) {
-        // Keep what the run produced so far: the outputs below are still written.
-        failure = std::current_exception();
-        m.endReason = "error: " + errorText(e);
-    }
-    if (m.endReason.empty())
-        m.endReason = "interrupted";
-    const eval::RunSummary summary = m.summarize(secondsSince(t0));
-    m.writeOutputs(summary);
-    if (failure)
-        std::rethrow_exception(failure);
-    return summary;
+    return runKeepingOutputs(
+        [&] {
+            m.flight.takeOffAndLookAround(m.settings().climb);
+            m.exploreStart = m.now();
+            m.recordDue();
+            if (!stopRequested_)
+                m.explore();
+            if (m.endReason.empty())
+                m.endReason = "interrupted";
+        },
+        m.endReason, [&](double wall) { return m.summarize(wall); },
+        [&](const eval::RunSummary& s) { m.writeOutputs(s); });
 }
 
 }  // namespace daep::mission

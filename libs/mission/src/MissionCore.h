@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <chrono>
+#include <exception>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -14,6 +16,7 @@
 #include "RawlogRecorder.h"
 #include "SceneExport.h"
 #include "StageClock.h"
+#include "daep/common/Error.h"
 #include "daep/eval/RunRecorder.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/PeopleInput.h"
@@ -27,6 +30,29 @@ class ExperimentConfig;
  * or another open-loop source): the map, the people input, the planner driver, the per-frame
  * step, the records and the outputs written at the end. Built from the experiment's config.
  */
+/**
+ * Runs a mission's loop and writes its outputs whatever happens: an error ends the loop with
+ * end reason "error: ...", the outputs of the part that ran are written, then it is rethrown.
+ * `summarize(wallSeconds)` gives the summary that `write(summary)` writes.
+ */
+template <typename Loop, typename Summarize, typename Write>
+eval::RunSummary runKeepingOutputs(Loop&& loop, std::string& endReason, Summarize&& summarize,
+                                   Write&& write) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::exception_ptr failure;
+    try {
+        loop();
+    } catch (const std::exception& e) {
+        failure = std::current_exception();
+        endReason = "error: " + errorText(e);
+    }
+    const eval::RunSummary summary = summarize(secondsSince(t0));
+    write(summary);
+    if (failure)
+        std::rethrow_exception(failure);
+    return summary;
+}
+
 struct MissionCore {
     /** How a mission uses its people and its clock. */
     struct Use {

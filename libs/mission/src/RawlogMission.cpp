@@ -175,26 +175,19 @@ std::size_t RawlogMission::frames() const {
 
 eval::RunSummary RawlogMission::run() {
     Impl& m = *impl_;
-    const auto t0 = Clock::now();
-    m.playStart = t0;
-    std::exception_ptr failure;
-    try {
-        do {
-            m.handleFrame();
-        } while (!stopRequested_ && m.source->next(m.frame));
-        m.noteFramesOutsidePoses();
-        m.endReason = stopRequested_          ? "interrupted"
-                      : m.params.file.empty() ? "end of frames"
-                                              : "end of rawlog";
-    } catch (const std::exception& e) {
-        failure = std::current_exception();  // keep the outputs of the part that ran
-        m.endReason = "error: " + errorText(e);
-    }
-    const eval::RunSummary summary = m.summarize(secondsSince(t0));
-    m.writeOutputs(summary);
-    if (failure)
-        std::rethrow_exception(failure);
-    return summary;
+    return runKeepingOutputs(
+        [&] {
+            m.playStart = std::chrono::steady_clock::now();
+            do {
+                m.handleFrame();
+            } while (!stopRequested_ && m.source->next(m.frame));
+            m.noteFramesOutsidePoses();
+            m.endReason = stopRequested_          ? "interrupted"
+                          : m.params.file.empty() ? "end of frames"
+                                                  : "end of rawlog";
+        },
+        m.endReason, [&](double wall) { return m.summarize(wall); },
+        [&](const eval::RunSummary& s) { m.writeOutputs(s); });
 }
 
 }  // namespace daep::mission
