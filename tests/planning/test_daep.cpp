@@ -343,7 +343,7 @@ TEST(DaepParams, MissingOrBadKeysAreNamed) {
     EXPECT_DOUBLE_EQ(p.aep.lambda, 0.75);
     EXPECT_DOUBLE_EQ(p.zeta, 0.5);
     EXPECT_DOUBLE_EQ(p.borderBoost, 6.0);
-    EXPECT_EQ(p.score, "paper");
+    EXPECT_EQ(p.score, daep::planning::DynamicScore::Paper);
 }
 
 TEST(DaepPlanner, IsCreatedByNameAndWantsPeople) {

@@ -217,7 +217,7 @@ private:
     /** The [tracking] settings with the people found in the depth frames. */
     static PeopleInputParams detectedPeople(const ExperimentConfig& config) {
         PeopleInputParams p = PeopleInputParams::fromConfig(config.config());
-        p.source = "detected";
+        p.source = PeopleSource::Detected;
         return p;
     }
 

@@ -20,7 +20,6 @@
 namespace daep::mission {
 namespace {
 
-
 constexpr double kEps = 1e-9;
 
 }  // namespace

@@ -48,7 +48,7 @@ PlannerDriver::Setup MissionCore::driverSetup(const ExperimentConfig& config) {
     d.droneSize = drone.boxSize;
     d.personSize = bodySize;
     d.people = &peopleInput;
-    d.fixedTime = settings.planningTime == "fixed";
+    d.fixedTime = settings.planningTime == PlanningTime::Fixed;
     d.fixedSeconds = settings.planningFixed;
     d.deadlineSeconds = settings.planningDeadline;
     d.recorder = &recorder;

@@ -43,10 +43,11 @@ Settings loadSettings(const ExperimentConfig& experiment) {
     s.maxTime = r.requireDouble("max_time_s");
     if (s.maxTime <= 0)
         throw InputError(r.where("max_time_s") + ": [experiment] max_time_s: must be > 0");
-    s.planningTime = r.requireString("planning_time");
-    if (s.planningTime != "measured" && s.planningTime != "fixed")
+    const std::string planningTime = r.requireString("planning_time");
+    if (planningTime != "measured" && planningTime != "fixed")
         throw InputError(r.where("planning_time") + ": [experiment] planning_time: '" +
-                         s.planningTime + "' is not one of measured, fixed");
+                         planningTime + "' is not one of measured, fixed");
+    s.planningTime = planningTime == "fixed" ? PlanningTime::Fixed : PlanningTime::Measured;
     s.planningFixed = r.requireDouble("planning_fixed_s");
     s.climb = r.requireDouble("climb_m");
     s.sampleEvery = r.requireDouble("timeseries_every_s");
@@ -59,7 +60,7 @@ Settings loadSettings(const ExperimentConfig& experiment) {
     s.planningDeadline = planning.requireDouble("deadline_s");
     if (!(s.planningDeadline > 0))
         throw InputError(planning.where("deadline_s") + ": [planning] deadline_s: must be > 0");
-    if (s.planningTime == "fixed" && s.planningFixed > s.planningDeadline)
+    if (s.planningTime == PlanningTime::Fixed && s.planningFixed > s.planningDeadline)
         throw InputError(planning.where("deadline_s") +
                          ": [planning] deadline_s: " + planning.requireString("deadline_s") +
                          " s is below [experiment] planning_fixed_s (" +

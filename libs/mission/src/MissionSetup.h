@@ -13,9 +13,16 @@ namespace daep::mission {
 
 class ExperimentConfig;
 
+/** [experiment] planning_time: what a plan call costs the simulated clock. */
+enum class PlanningTime {
+    Fixed,     ///< planning_fixed_s per call: runs repeat bit for bit
+    Measured,  ///< the call's wall time, with the [planning] deadline
+};
+
 /** The [experiment] section (and [planning] deadline_s), validated. */
 struct Settings {
-    std::string worldName, mode, plannerName, planningTime;
+    std::string worldName, mode, plannerName;
+    PlanningTime planningTime = PlanningTime::Fixed;
     int start = 0;
     std::uint64_t seed = 0;
     double maxTime = 0, planningFixed = 0, climb = 0, sampleEvery = 0, progressEvery = 0;

@@ -51,10 +51,25 @@ perception::PeopleTracker::EmptyTest seenEmptyIn(const DepthView& view,
     };
 }
 
+const char* peopleSourceName(PeopleSource source) {
+    switch (source) {
+        case PeopleSource::GroundTruth:
+            return "ground_truth";
+        case PeopleSource::Sensed:
+            return "sensed";
+        case PeopleSource::Detected:
+            return "detected";
+    }
+    return "?";
+}
+
 PeopleInputParams PeopleInputParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     const ConfigReader r(config, "tracking");
     PeopleInputParams p;
-    p.source = requireOneOf(r, "people_source", {"ground_truth", "sensed", "detected"});
+    p.source = requireEnum<PeopleSource>(r, "people_source",
+                                         {{"ground_truth", PeopleSource::GroundTruth},
+                                          {"sensed", PeopleSource::Sensed},
+                                          {"detected", PeopleSource::Detected}});
     p.sensedRange = requirePositive(r, "sensed_range");
     p.sensedNoiseSigma = requireNonNegative(r, "sensed_noise_sigma");
     p.excludeFromMap = r.requireBool("exclude_from_map");
@@ -135,12 +150,13 @@ void PeopleInput::checkSourceCanFeed(const Frame& first, bool hasSight,
                                      const std::string& sourceName) const {
     if (detects())
         return;
-    if (params_.source == "sensed" && !hasSight)
+    if (params_.source == PeopleSource::Sensed && !hasSight)
         throw InputError(sourceName +
                          ": [tracking] people_source = sensed needs the simulator's scene; "
                          "recorded frames can give detected or ground_truth");
     if (!first.truePeople)
-        throw InputError(sourceName + ": [tracking] people_source = " + params_.source +
+        throw InputError(sourceName +
+                         ": [tracking] people_source = " + peopleSourceName(params_.source) +
                          " needs the true people (PERSON_<i> poses), and the frames have none; "
                          "use people_source = detected");
 }
@@ -160,7 +176,7 @@ void PeopleInput::measure(double t, const std::vector<world::PersonState>& truth
                           const CameraSight* sight, const Eigen::Vector3d& bodySize,
                           const DepthView& view) {
     std::vector<perception::PersonMeasurement> seen;
-    const bool sensed = params_.source == "sensed";
+    const bool sensed = params_.source == PeopleSource::Sensed;
     const double sigma = sensed ? params_.sensedNoiseSigma : 0.0;
     const double r = std::max(sigma, params_.tracker.predictor.measurementSigma);
     std::normal_distribution<double> noise(0.0, 1.0);

@@ -34,15 +34,18 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.recheckClearanceScale = requireNonNegative(r, "recheck_clearance_scale");
     p.dfmCellSize = requirePositive(r, "dfm_cell_size");
     p.zeta = requireNonNegative(r, "zeta");
-    p.score = requireOneOf(r, "score", {"paper", "reference"});
+    p.score = requireEnum<DynamicScore>(
+        r, "score", {{"paper", DynamicScore::Paper}, {"reference", DynamicScore::Reference}});
     p.borderBoost = requirePositive(r, "border_boost");
     p.borderDistance = requireNonNegative(r, "border_distance");
     p.useGp = r.requireBool("use_gp");
     p.evasionHorizon = requirePositive(r, "evasion_horizon_s");
     p.trapHorizon = requireNonNegative(r, "trap_horizon_s");
     p.waitTime = requirePositive(r, "wait_s");
-    p.faceTravel = requireOneOf(r, "face_travel_direction", {"auto", "true", "false"});
-    p.blindGuard = requireOneOf(r, "blind_guard", {"auto", "true", "false"});
+    const std::vector<std::pair<std::string, AutoSwitch>> autoSwitch = {
+        {"auto", AutoSwitch::Auto}, {"true", AutoSwitch::On}, {"false", AutoSwitch::Off}};
+    p.faceTravel = requireEnum(r, "face_travel_direction", autoSwitch);
+    p.blindGuard = requireEnum(r, "blind_guard", autoSwitch);
     p.blind.walkSpeed = requireNonNegative(r, "blind_walk_speed");
     p.blind.busyThreshold = requireInRange(r, "blind_busy_threshold", 0.0, 1.0);
     p.blind.freshness = requireNonNegative(r, "blind_freshness_s");
@@ -78,15 +81,13 @@ DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const 
 }
 
 void DaepPlanner::observePeople(const PlanningContext& context) {
-    facingTravel_ =
-        params_.faceTravel == "true" || (params_.faceTravel == "auto" && context.peopleFromCamera);
+    facingTravel_ = isOn(params_.faceTravel, context.peopleFromCamera);
     obstacles_ = obstaclesOf(context);
     if (dfm_.width() == 0) {
         dfm_ = FrequencyMap(context.explorationBox, params_.dfmCellSize);
         watch_ = BlindWatch(dfm_, params_.blind);
     }
-    guardingBlind_ =
-        params_.blindGuard == "true" || (params_.blindGuard == "auto" && context.peopleFromCamera);
+    guardingBlind_ = isOn(params_.blindGuard, context.peopleFromCamera);
     if (guardingBlind_)
         watch_.see(context.pose, gainEvaluator().params().hfov, context.time);
     if (context.time < lastObservation_ + kDfmPeriod)
@@ -205,7 +206,7 @@ double DaepPlanner::branchValue(double parentValue, double gain, double edge,
                                 const Eigen::Vector3d& p) const {
     const double boost = params_.zeta * dfm_.value(p.head<2>());
     const double lambda = params().lambda;
-    if (params_.score == "reference")
+    if (params_.score == DynamicScore::Reference)
         return parentValue + gain * std::exp(-lambda * edge * (1.0 + boost));
     return parentValue + gain * std::exp(-lambda * edge) * (1.0 + boost);
 }

@@ -2,6 +2,7 @@
 
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "daep/common/Config.h"
@@ -61,6 +62,23 @@ inline std::string requireOneOf(const ConfigReader& r, const std::string& key,
         list += (i == 0 ? "" : i + 1 == allowed.size() ? " or " : ", ") + allowed[i];
     throw InputError(r.where(key) + ": [" + r.section() + "] " + key + ": '" + v + "' must be " +
                      list);
+}
+
+/**
+ * An ini word read into an enum once, as MRPT's read_enum: `words` pairs each allowed word
+ * with its value; any other word is an InputError naming the key and the allowed words.
+ */
+template <typename E>
+E requireEnum(const ConfigReader& r, const std::string& key,
+              const std::vector<std::pair<std::string, E>>& words) {
+    std::vector<std::string> allowed;
+    for (const auto& w : words)
+        allowed.push_back(w.first);
+    const std::string v = requireOneOf(r, key, allowed);
+    for (const auto& w : words)
+        if (w.first == v)
+            return w.second;
+    return words.front().second;  // not reached: requireOneOf threw
 }
 
 }  // namespace daep

@@ -27,13 +27,19 @@ class RayCaster;
 
 namespace daep::mission {
 
+/** [tracking] people_source: where the planner's people come from. */
+enum class PeopleSource {
+    GroundTruth,  ///< every person, exactly
+    Sensed,       ///< only people the camera really sees, with noise
+    Detected,     ///< people found in the depth frames by the detector
+};
+
+/** The ini word of a people source (ground_truth, sensed, detected). */
+const char* peopleSourceName(PeopleSource source);
+
 /** Section [tracking]: where the planner's people come from and how they are tracked. */
 struct PeopleInputParams {
-    /**
-     * ground_truth: every person, exactly; sensed: only people the camera really sees;
-     * detected: people found in the depth frames by the detector.
-     */
-    std::string source = "ground_truth";
+    PeopleSource source = PeopleSource::GroundTruth;
     double sensedRange = 10.0;       ///< m from the camera
     double sensedNoiseSigma = 0.05;  ///< m, Gaussian on each sensed position
     /** Depth returns on the people tracked lately are kept out of the map (see mapFootprints). */
@@ -98,9 +104,9 @@ public:
     /** InputError naming `sourceName` when its frames cannot feed this people_source. */
     void checkSourceCanFeed(const Frame& first, bool hasSight, const std::string& sourceName) const;
 
-    bool detects() const { return params_.source == "detected"; }
+    bool detects() const { return params_.source == PeopleSource::Detected; }
     /** Whether people are known only where the camera looks (sensed or detected). */
-    bool fromCamera() const { return params_.source != "ground_truth"; }
+    bool fromCamera() const { return params_.source != PeopleSource::GroundTruth; }
     bool excludesFromMap() const { return params_.excludeFromMap; }
     /**
      * With people_source = detected: finds people in the frame seen from `robot`; call it

@@ -11,6 +11,20 @@
 
 namespace daep::planning {
 
+/** The dynamic score of a branch ([daep] score). */
+enum class DynamicScore {
+    Paper,      ///< s = parent + d exp(-lambda c) (1 + zeta DFM)
+    Reference,  ///< the reference code's: the DFM boost in the exponent
+};
+
+/** A behaviour that is on, off, or on when the people come from the camera. */
+enum class AutoSwitch { Auto, On, Off };
+
+/** Whether an AutoSwitch is on, given what Auto means here. */
+inline bool isOn(AutoSwitch s, bool whenAuto) {
+    return s == AutoSwitch::On || (s == AutoSwitch::Auto && whenAuto);
+}
+
 /** Section [daep]: AEP's keys (with DAEP's values) plus the dynamic ones. */
 struct DaepParams {
     AepParams aep;
@@ -19,8 +33,7 @@ struct DaepParams {
     double recheckClearanceScale = 0.5;
     double dfmCellSize = 1.0;
     double zeta = 0.5;
-    /** paper: s = parent + d exp(-lambda c) (1 + zeta DFM); reference: DFM in the exponent. */
-    std::string score = "paper";
+    DynamicScore score = DynamicScore::Paper;
     double borderBoost = 6.0;
     double borderDistance = 1.0;
     bool useGp = true;
@@ -36,13 +49,13 @@ struct DaepParams {
      * who is in the way: always, never (AEP's turn to the view, then fly), or auto (when the
      * people come from the camera).
      */
-    std::string faceTravel = "auto";
+    AutoSwitch faceTravel = AutoSwitch::Auto;
     /**
      * Before a stop where a person the camera has not seen could walk in (BlindWatch), turn
      * to look at where they would come from: always, never, or auto (when the people come
      * from the camera; with ground truth the planner sees everyone).
      */
-    std::string blindGuard = "auto";
+    AutoSwitch blindGuard = AutoSwitch::Auto;
     BlindWatchParams blind;
 
     static DaepParams fromConfig(const mrpt::config::CConfigFileBase& config);
