@@ -518,6 +518,14 @@ TEST(RawlogSource, PosesFromARunsTumTrajectoryMapLikeTheRawlogsPoses) {
               << " m^3\n";
     EXPECT_GT(fromRawlog, 30.0);
     EXPECT_NEAR(fromFile, fromRawlog, 0.01 * fromRawlog);  // the file rounds to 0.1 mm
+
+    // Read on the wrong clock (seconds since 1970), the file covers no frame: that is said.
+    const std::string e = inputErrorOf([&] {
+        replayedKnownVolume(rawlog, {"rawlog.poses_file=" + (sim / "trajectory_tum.txt").string()},
+                            "tumC");
+    });
+    EXPECT_NE(e.find("trajectory_tum.txt: none of the 72 depth frames of"), std::string::npos) << e;
+    EXPECT_NE(e.find("poses_file_clock = absolute"), std::string::npos) << e;
 }
 
 /**

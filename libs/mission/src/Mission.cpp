@@ -27,8 +27,8 @@ constexpr double kEps = 1e-9;
 struct Mission::Impl : FlightLoop::Mission {
     Impl(const ExperimentConfig& config, const std::string& outputDir, std::ostream* logStream)
         : configForReach(&config.config()),
-          sim(config, &core.stages),  // only its address: the core is built next
-          core(config, coreUse(), outputDir, logStream),
+          sim(config, &stages),
+          core(config, coreUse(), stages, outputDir, logStream),
           memory(core.recorder.path("memory.csv"), core.outputs.memoryEvery) {
         nextScene = core.outputs.sceneEvery;
     }
@@ -172,6 +172,7 @@ struct Mission::Impl : FlightLoop::Mission {
     }
 
     const mrpt::config::CConfigFileBase* configForReach;
+    StageClock stages;  ///< wall time by stage, of the simulator and the core
     SimulatorSource sim;
     MissionCore core;
     MemoryLog memory;

@@ -10,9 +10,10 @@
 
 namespace daep::mission {
 
-MissionCore::MissionCore(const ExperimentConfig& config, const Use& how,
+MissionCore::MissionCore(const ExperimentConfig& config, const Use& how, StageClock& clock,
                          const std::string& outputDir, std::ostream* logStream)
-    : settings(loadSettings(config)),
+    : stages(clock),
+      settings(loadSettings(config)),
       use(how),
       log(logStream),
       recorder(outputDir, how.plans),

@@ -68,8 +68,9 @@ struct MissionCore {
         std::string sourceName;
     };
 
-    MissionCore(const ExperimentConfig& config, const Use& use, const std::string& outputDir,
-                std::ostream* log);
+    /** `stages` (the mission's, shared with its frame source) must outlive the core. */
+    MissionCore(const ExperimentConfig& config, const Use& use, StageClock& stages,
+                const std::string& outputDir, std::ostream* log);
 
     /** timeseries.csv rows due by `time`, and the progress line (`progress` adds its figures). */
     template <typename Progress>
@@ -103,7 +104,7 @@ struct MissionCore {
     /** The scene's map, trajectory and tree; the caller adds people and the drone. */
     SceneContent sceneBase() const;
 
-    StageClock stages;
+    StageClock& stages;
     Settings settings;
     Use use;
     std::ostream* log;

@@ -3,6 +3,8 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -39,11 +41,18 @@ std::unique_ptr<FrameSource> openRawlog(const RawlogParams& params) {
 
 Frame firstFrame(FrameSource& source, const RawlogParams& params) {
     Frame first;
-    if (!source.next(first))
-        throw InputError(source.name() +
-                         ": no depth frames (CObservation3DRangeScan with a range image" +
-                         (params.sensorLabel.empty() ? "" : ", label " + params.sensorLabel) + ")");
-    return first;
+    if (source.next(first))
+        return first;
+    const auto* rawlog = dynamic_cast<const RawlogSource*>(&source);
+    if (rawlog && rawlog->framesOutsidePoses() > 0)
+        throw InputError(params.posesFile + ": none of the " +
+                         std::to_string(rawlog->framesOutsidePoses()) + " depth frames of " +
+                         source.name() +
+                         " lies within its time span ([rawlog] poses_file_clock = " +
+                         (params.posesRelativeTime ? "relative" : "absolute") + ")");
+    throw InputError(source.name() +
+                     ": no depth frames (CObservation3DRangeScan with a range image" +
+                     (params.sensorLabel.empty() ? "" : ", label " + params.sensorLabel) + ")");
 }
 
 }  // namespace
@@ -64,7 +73,7 @@ struct RawlogMission::Impl {
           source(frames ? std::move(frames) : openRawlog(params)),
           frame(firstFrame(*source, params)),
           box(replayBox(config, params, frame.robot)),
-          core(config, coreUse(), outputDir, logStream) {
+          core(config, coreUse(), stages, outputDir, logStream) {
         core.peopleInput.checkSourceCanFeed(frame, false, source->name());
         const auto* fromRawlog = dynamic_cast<const RawlogSource*>(source.get());
         if (fromRawlog && !fromRawlog->lastFrameHadPose() && core.log)
@@ -93,9 +102,8 @@ struct RawlogMission::Impl {
      */
     void handleFrame() {
         t = frame.time;
-        if (params.realtime)  // the rawlog's own pace: frame time t is due t after the start
-            std::this_thread::sleep_until(playStart + std::chrono::duration_cast<Clock::duration>(
-                                                          std::chrono::duration<double>(t)));
+        if (params.realtime)
+            waitForFrameTime();
         core.step.process(frame);
         ++frameCount;
         if (frameCount > 1)
@@ -112,6 +120,15 @@ struct RawlogMission::Impl {
             while (nextPlan <= t + kEps)
                 nextPlan += params.planEvery;
         }
+    }
+
+    /** The rawlog's own pace: frame time t is due t after the start (a stop ends the wait). */
+    void waitForFrameTime() const {
+        const auto due = playStart + std::chrono::duration_cast<Clock::duration>(
+                                         std::chrono::duration<double>(t));
+        while (Clock::now() < due && !(stopFlag && *stopFlag))
+            std::this_thread::sleep_until(
+                std::min(due, Clock::now() + std::chrono::milliseconds(100)));
     }
 
     void noteFramesOutsidePoses() const {
@@ -144,9 +161,11 @@ struct RawlogMission::Impl {
     std::unique_ptr<FrameSource> source;
     Frame frame;  ///< read before any output exists: a file that is no rawlog leaves none
     ReplayBox box;
+    StageClock stages;
     MissionCore core;
     FlatPose lastPose;
     Clock::time_point playStart = Clock::now();
+    const std::atomic<bool>* stopFlag = nullptr;
 
     double t = 0.0;
     double nextPlan = 0.0;
@@ -161,7 +180,9 @@ RawlogMission::RawlogMission(const ExperimentConfig& config, const std::string& 
 
 RawlogMission::RawlogMission(const ExperimentConfig& config, std::unique_ptr<FrameSource> frames,
                              const std::string& outputDir, std::ostream* log)
-    : impl_(std::make_unique<Impl>(config, std::move(frames), outputDir, log)) {}
+    : impl_(std::make_unique<Impl>(config, std::move(frames), outputDir, log)) {
+    impl_->stopFlag = &stopRequested_;
+}
 
 RawlogMission::~RawlogMission() = default;
 

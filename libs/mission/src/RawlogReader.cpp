@@ -199,7 +199,8 @@ struct RawlogReader::Impl {
         ++objects;
         queue.insert(queue.end(), observations.begin(), observations.end());
         for (const auto& action : actions)
-            integrateMovement(*action);
+            if (integrateMovement(*action))
+                break;  // one movement per collection (a 2D and a 3D one describe the same)
         return true;
     }
 
@@ -207,7 +208,7 @@ struct RawlogReader::Impl {
      * A robot movement action (actions / sensory-frames format) moves the odometry pose by its
      * increment; the pose joins the queue as a robot pose labelled ACTIONS, in file order.
      */
-    void integrateMovement(const mrpt::obs::CAction& action) {
+    bool integrateMovement(const mrpt::obs::CAction& action) {
         mrpt::poses::CPose3D change;
         if (const auto* m2 = dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(&action))
             change = mrpt::poses::CPose3D(m2->poseChange ? m2->poseChange->getMeanVal()
@@ -215,7 +216,7 @@ struct RawlogReader::Impl {
         else if (const auto* m3 = dynamic_cast<const mrpt::obs::CActionRobotMovement3D*>(&action))
             change = m3->poseChange.mean;
         else
-            return;
+            return false;
         if (!finitePose(change))
             fail("corrupt rawlog: a robot movement in " + where(objects) +
                  " is not finite or lies beyond " +
@@ -226,6 +227,7 @@ struct RawlogReader::Impl {
         pose->timestamp = action.timestamp;
         pose->pose.mean = actionPose;
         queue.push_back(pose);
+        return true;
     }
 
     [[noreturn]] void failTruncated() const {

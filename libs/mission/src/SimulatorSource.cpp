@@ -28,6 +28,13 @@ std::string formatPoint(const Eigen::Vector3d& p) {
     return o.str();
 }
 
+const Eigen::Vector3d& startOf(const world::WorldSpec& world, int start) {
+    if (start < 0 || std::size_t(start) >= world.starts.size())
+        throw InputError(world.sourceFile + ": no start " + std::to_string(start) + " (it has " +
+                         std::to_string(world.starts.size()) + ")");
+    return world.starts[std::size_t(start)];
+}
+
 /** The drone rests on the start point: its box's bottom face is at the start's z. */
 FlatPose restingOn(const Eigen::Vector3d& start, const sim::DroneParams& drone) {
     FlatPose p;
@@ -46,8 +53,7 @@ SimulatorSource::SimulatorSource(world::WorldSpec world,
       caster_(world_),
       statics_(world_),
       camera_(loadCameraParams(config)),
-      drone_(loadDroneParams(config),
-             restingOn(world_.starts[std::size_t(start)], loadDroneParams(config))),
+      drone_(loadDroneParams(config), restingOn(startOf(world_, start), loadDroneParams(config))),
       monitor_(drone_.params().boxSize, people_.params().bodySize, &statics_),
       noise_(seed),
       depth_(std::make_shared<mrpt::obs::CObservation3DRangeScan>()),

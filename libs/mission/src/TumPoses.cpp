@@ -39,9 +39,13 @@ TumPoses::TumPoses(const std::string& path) : path_(path) {
         throw InputError(path + ": no poses");
 }
 
-std::optional<Eigen::Isometry3d> TumPoses::at(double t) const {
-    if (t < samples_.front().time || t > samples_.back().time)
+std::optional<Eigen::Isometry3d> TumPoses::at(double time) const {
+    // Files print their times rounded (a run's trajectory_tum.txt to 1 ms): a frame that
+    // close past either end takes the end's pose.
+    constexpr double kRounding = 1e-3;
+    if (time < samples_.front().time - kRounding || time > samples_.back().time + kRounding)
         return std::nullopt;
+    const double t = std::clamp(time, samples_.front().time, samples_.back().time);
     const auto after = std::upper_bound(samples_.begin(), samples_.end(), t,
                                         [](double v, const Sample& s) { return v < s.time; });
     const Sample& b = after == samples_.end() ? samples_.back() : *after;

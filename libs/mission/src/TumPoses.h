@@ -18,7 +18,7 @@ public:
 
     /**
      * The pose at time t: linear between the two samples around t, the rotation by slerp;
-     * nullopt before the first sample or after the last.
+     * nullopt more than 1 ms before the first sample or after the last.
      */
     std::optional<Eigen::Isometry3d> at(double t) const;
 
