@@ -30,31 +30,6 @@ using Clock = std::chrono::steady_clock;
 /** Rawlog timestamps are seconds since 1970 as doubles: compare rawlog times with slack. */
 constexpr double kEps = 1e-6;
 
-std::unique_ptr<FrameSource> openRawlog(const RawlogParams& params) {
-    if (params.posesFile.empty())
-        return std::make_unique<RawlogSource>(params.file, params.sensorLabel, params.poseLabel);
-    const RawlogSource::PosesFile poses{params.posesFile, params.posesOptical,
-                                        params.posesRelativeTime};
-    return std::make_unique<RawlogSource>(params.file, params.sensorLabel, params.poseLabel,
-                                          &poses);
-}
-
-Frame firstFrame(FrameSource& source, const RawlogParams& params) {
-    Frame first;
-    if (source.next(first))
-        return first;
-    const auto* rawlog = dynamic_cast<const RawlogSource*>(&source);
-    if (rawlog && rawlog->framesOutsidePoses() > 0)
-        throw InputError(params.posesFile + ": none of the " +
-                         std::to_string(rawlog->framesOutsidePoses()) + " depth frames of " +
-                         source.name() +
-                         " lies within its time span ([rawlog] poses_file_clock = " +
-                         (params.posesRelativeTime ? "relative" : "absolute") + ")");
-    throw InputError(source.name() +
-                     ": no depth frames (CObservation3DRangeScan with a range image" +
-                     (params.sensorLabel.empty() ? "" : ", label " + params.sensorLabel) + ")");
-}
-
 }  // namespace
 
 bool RawlogMission::selectedBy(const ExperimentConfig& config) {

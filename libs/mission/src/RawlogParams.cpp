@@ -9,6 +9,7 @@
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
+#include "daep/mission/RawlogSource.h"
 
 namespace daep::mission {
 
@@ -77,6 +78,31 @@ ReplayBox replayBox(const ExperimentConfig& config, const RawlogParams& params,
     r.volume = w.explorationVolume();
     r.worldName = w.name;
     return r;
+}
+
+std::unique_ptr<FrameSource> openRawlog(const RawlogParams& params) {
+    if (params.posesFile.empty())
+        return std::make_unique<RawlogSource>(params.file, params.sensorLabel, params.poseLabel);
+    const RawlogSource::PosesFile poses{params.posesFile, params.posesOptical,
+                                        params.posesRelativeTime};
+    return std::make_unique<RawlogSource>(params.file, params.sensorLabel, params.poseLabel,
+                                          &poses);
+}
+
+Frame firstFrame(FrameSource& source, const RawlogParams& params) {
+    Frame first;
+    if (source.next(first))
+        return first;
+    const auto* rawlog = dynamic_cast<const RawlogSource*>(&source);
+    if (rawlog && rawlog->framesOutsidePoses() > 0)
+        throw InputError(params.posesFile + ": none of the " +
+                         std::to_string(rawlog->framesOutsidePoses()) + " depth frames of " +
+                         source.name() +
+                         " lies within its time span ([rawlog] poses_file_clock = " +
+                         (params.posesRelativeTime ? "relative" : "absolute") + ")");
+    throw InputError(source.name() +
+                     ": no depth frames (CObservation3DRangeScan with a range image" +
+                     (params.sensorLabel.empty() ? "" : ", label " + params.sensorLabel) + ")");
 }
 
 }  // namespace daep::mission

@@ -1,9 +1,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 
 #include "daep/common/Types.h"
+#include "daep/mission/FrameSource.h"
 
 namespace daep {
 class ConfigReader;
@@ -37,6 +39,15 @@ ReplayBox replayBox(const ExperimentConfig& config, const RawlogParams& params,
 
 /** Throws InputError naming the file and key; rawlog_file is required only if `needFile`. */
 RawlogParams loadRawlogParams(const ExperimentConfig& experiment, bool needFile);
+
+/** [experiment] rawlog_file as a frame source, its poses from [rawlog] poses_file if set. */
+std::unique_ptr<FrameSource> openRawlog(const RawlogParams& params);
+
+/**
+ * The source's first frame; InputError naming the file when it has none (naming the poses
+ * file and its clock when every frame lay outside its span).
+ */
+Frame firstFrame(FrameSource& source, const RawlogParams& params);
 
 /** A key whose empty value means "not set": its value, trimmed, or "". */
 std::string optionalString(const ConfigReader& r, const std::string& key);
