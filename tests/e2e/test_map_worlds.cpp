@@ -17,18 +17,11 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kMaps = std::string(DAEP_E2E_DATA) + "/maps";
 
-/**
- * The tiny room's mission, 45 s, on a world made of a map instead of boxes. Without the scene:
- * these tests do not look at it, and under clang 14's LeakSanitizer the EGL rendering's
- * dynamic TLS made the leak check's tracer crash at exit in one of them (a layout-dependent
- * LSan fault; the run itself was clean).
- */
+/** The tiny room's mission, 45 s, on a world made of a map instead of boxes. */
 AppResult exploreMapWorld(const std::string& world, const fs::path& dir) {
-    return runExplore(
-        kTinyIni + " --set experiment.world=maps/" + world +
-            " --set experiment.max_time_s=45 --set output.scene=false --quiet --out " +
-            (dir / "run").string(),
-        dir);
+    return runExplore(kTinyIni + " --set experiment.world=maps/" + world +
+                          " --set experiment.max_time_s=45 --quiet --out " + (dir / "run").string(),
+                      dir);
 }
 
 TEST(MapWorlds, ExploresTheRoomScannedAtAFinerResolution) {

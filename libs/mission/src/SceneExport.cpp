@@ -1,7 +1,5 @@
 #include "SceneExport.h"
 
-#include "daep/perception/PeopleTracker.h"
-
 #include <mrpt/img/CImage.h>
 #include <mrpt/img/color_maps.h>
 #include <mrpt/io/CFileGZOutputStream.h>
@@ -24,9 +22,11 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "daep/common/Sanitizers.h"
 #include "daep/eval/ImageOverlay.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/SceneColors.h"
+#include "daep/perception/PeopleTracker.h"
 
 namespace daep::mission {
 namespace {
@@ -345,8 +345,10 @@ void SceneExporter::write(const SceneContent& content) {
     if (!renderPng_)
         return;
     try {
-        if (!impl_->renderer)
+        if (!impl_->renderer) {
+            leakCheckBeforeDynamicTls();
             impl_->renderer = std::make_unique<gl::CFBORender>(params_.pngWidth, params_.pngHeight);
+        }
         renderPngs(*impl_->renderer, scene, box, directory_, params_.pngWidth, params_.pngHeight);
     } catch (const std::exception& e) {
         renderPng_ = false;
