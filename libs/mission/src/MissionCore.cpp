@@ -20,7 +20,6 @@ MissionCore::MissionCore(const ExperimentConfig& config, const Use& how, StageCl
       outputs(loadOutputParams(config.config())),
       scene(outputs, outputDir, logStream),
       map(loadMapParams(config.config()), how.explorationBox),
-      boxVolume(how.explorationVolume),
       peopleInput(PeopleInputParams::fromConfig(config.config()),
                   settings.seed * 0xD1B54A32D192ED03ull + 7),
       bodySize(loadPeopleParams(config.config()).bodySize),
@@ -93,7 +92,7 @@ eval::RunSummary MissionCore::summary(double explorationTime, double pathLength,
     s.iterations = driver.iterations();
     s.wallTime = wallTime;
     s.knownVolume = map.knownVolumeInBox();
-    s.boxVolume = boxVolume;
+    s.boxVolume = use.explorationVolume;
     s.provenance = invocation;
     return s;
 }

@@ -26,11 +26,6 @@ namespace daep::mission {
 class ExperimentConfig;
 
 /**
- * What every mission has, whatever its frames come from (the simulator, closed loop; a rawlog
- * or another open-loop source): the map, the people input, the planner driver, the per-frame
- * step, the records and the outputs written at the end. Built from the experiment's config.
- */
-/**
  * Runs a mission's loop and writes its outputs whatever happens: an error ends the loop with
  * end reason "error: ...", the outputs of the part that ran are written, then it is rethrown.
  * `summarize(wallSeconds)` gives the summary that `write(summary)` writes.
@@ -53,6 +48,11 @@ eval::RunSummary runKeepingOutputs(Loop&& loop, std::string& endReason, Summariz
     return summary;
 }
 
+/**
+ * What every mission has, whatever its frames come from (the simulator, closed loop; a rawlog
+ * or another open-loop source): the map, the people input, the planner driver, the per-frame
+ * step, the records and the outputs written at the end. Built from the experiment's config.
+ */
 struct MissionCore {
     /** How a mission uses its people and its clock. */
     struct Use {
@@ -92,7 +92,9 @@ struct MissionCore {
     }
 
     /** Known volume over the box's (or the world's declared) volume. */
-    double coveragePercent() const { return 100.0 * map.knownVolumeInBox() / boxVolume; }
+    double coveragePercent() const {
+        return 100.0 * map.knownVolumeInBox() / use.explorationVolume;
+    }
 
     /** The figures every mission reports; the caller adds its own. */
     eval::RunSummary summary(double explorationTime, double pathLength, double wallTime) const;
@@ -112,7 +114,6 @@ struct MissionCore {
     OutputParams outputs;
     SceneExporter scene;
     mapping::ExplorationMap map;
-    double boxVolume;
     PeopleInput peopleInput;
     Eigen::Vector3d bodySize;
     PlannerDriver driver;

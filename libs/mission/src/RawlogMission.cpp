@@ -27,7 +27,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/** Rawlog timestamps are seconds since 1970 as doubles: compare rawlog times with slack. */
+/** Slack of the plan and sample clocks: a frame at a multiple of their period is due then. */
 constexpr double kEps = 1e-6;
 
 }  // namespace
