@@ -54,7 +54,7 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
         s.coveragePercent = 42.125;
         s.collisions = 3;
         s.finished = true;
-        s.endReason = "planner finished";
+        s.endReason = EndReason::plannerFinished("no frontiers left");
         s.labels = {{"world", "cafe"}};
         rec.flush();
         rec.writeSummary(s);
@@ -72,7 +72,7 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
          {"\"world\": \"cafe\"", "\"coverage_percent\": 42.1250", "\"collisions\": 3",
           "\"finished\": true", "\"plan_ms_median\"", "\"plan_ms_p95\"", "\"wall_time_s\"",
           "\"static_collisions\"", "\"iterations\"", "\"exploration_time_s\"", "\"path_length_m\"",
-          "\"planning_time_s\""})
+          "\"planning_time_s\"", "\"end_reason\": \"planner finished: no frontiers left\""})
         EXPECT_NE(summary.find(key), std::string::npos) << key;
     EXPECT_EQ(summary.find("reachable_percent"), std::string::npos);  // unset: not written
     EXPECT_EQ(readText(dir / "nested" / "collisions.csv"),

@@ -178,7 +178,7 @@ TEST(OpenLoopMission, AnyFrameSourceFeedsTheLoopOfARawlog) {
                           nullptr);
     const auto s = mission.run();
     EXPECT_EQ(mission.frames(), 20u);
-    EXPECT_EQ(s.endReason, "end of frames");
+    EXPECT_EQ(s.endReason.kind, eval::EndReason::Kind::EndOfFrames);
     EXPECT_EQ(s.iterations, 4);  // frames at t = 0 .. 3.8 s, plans at 0, 1, 2 and 3 s
     EXPECT_GT(mission.map().knownCellsInBox(), 1000u);
     // Ground-truth people come with the simulator's frames: the walker is tracked.

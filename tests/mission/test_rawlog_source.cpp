@@ -155,7 +155,7 @@ TEST(RawlogSource, ReplayOfARecordedRunGivesTheSameMap) {
     EXPECT_EQ(readBytes(replay / "map.bt"), readBytes(sim / "map.bt"));
     // The replay's trajectory is the recorded one, on the rawlog clock (t = 0 at spawn).
     EXPECT_EQ(readBytes(replay / "trajectory.csv"), readBytes(sim / "trajectory.csv"));
-    EXPECT_EQ(summary.endReason, "end of rawlog");
+    EXPECT_EQ(summary.endReason.kind, daep::eval::EndReason::Kind::EndOfRawlog);
 }
 
 /** The shipped dynamic-world rawlog replays with RH-NBVP and writes one plan per second. */
@@ -173,7 +173,7 @@ TEST(RawlogSource, ShippedDatasetReplaysWithAPlanner) {
     EXPECT_LE(s.coveragePercent, 100.0);
     EXPECT_EQ(s.collisions, 0);
     EXPECT_FALSE(s.finished);
-    EXPECT_EQ(s.endReason, "end of rawlog");
+    EXPECT_EQ(s.endReason.text(), "end of rawlog");
 
     const auto plans = lines(out / "plans.csv");
     ASSERT_EQ(plans.size(), 22u);

@@ -277,7 +277,7 @@ TEST(AepPlanner, AsTheReferenceBaselineItKeepsTryingWhileAFrontierIsLeft) {
     for (int k = 0; k < 40; ++k) {
         ctx.time += 0.5;
         const Plan plan = planner.plan(ctx);
-        ASSERT_EQ(plan.status, Plan::Status::Path) << k << ": " << plan.reason;
+        ASSERT_EQ(plan.status, Plan::Status::Wait) << k << ": " << plan.reason;
         EXPECT_TRUE(plan.waypoints.empty()) << plan.reason;
         EXPECT_EQ(plan.waitSeconds, planner.params().globalRetryWait);
     }
@@ -293,7 +293,7 @@ TEST(AepPlanner, WithACounterItFinishesAfterThatManyFailedGlobalPlans) {
     auto closed = corridorClosedAtSix();
     const PlanningContext ctx = contextFor(*closed, {2.0, 2.0, 1.0});
     for (int k = 1; k < 25; ++k)
-        ASSERT_EQ(planner.plan(ctx).status, Plan::Status::Path) << k;
+        ASSERT_EQ(planner.plan(ctx).status, Plan::Status::Wait) << k;
     const Plan last = planner.plan(ctx);
     EXPECT_EQ(last.status, Plan::Status::Finished) << last.reason;
     EXPECT_NE(last.reason.find("after 25 global plans"), std::string::npos) << last.reason;

@@ -123,7 +123,7 @@ TEST(RhNbvpPlanner, UnknownSurroundingsGiveAFailedPlanNotFinished) {
     auto map = test::makeMap(box(0, 0, 0, 4, 4, 2));
     RhNbvpPlanner planner = makePlanner(3);
     const Plan plan = planner.plan(contextFor(*map, {2, 2, 1}));
-    EXPECT_EQ(plan.status, Plan::Status::Path);
+    EXPECT_EQ(plan.status, Plan::Status::NoPath);
     EXPECT_TRUE(plan.waypoints.empty());
     EXPECT_NE(plan.reason.find("stalled"), std::string::npos) << plan.reason;
 }

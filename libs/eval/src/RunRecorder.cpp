@@ -7,6 +7,28 @@
 #include "daep/eval/Statistics.h"
 
 namespace daep::eval {
+
+std::string EndReason::text() const {
+    switch (kind) {
+        case Kind::None:
+            return "";
+        case Kind::PlannerFinished:
+            return "planner finished: " + detail;
+        case Kind::NoPathLimit:
+            return "planner returned no path " + detail + " times in a row";
+        case Kind::TimeLimit:
+            return "time limit";
+        case Kind::EndOfFrames:
+            return "end of frames";
+        case Kind::EndOfRawlog:
+            return "end of rawlog";
+        case Kind::Interrupted:
+            return "interrupted";
+        case Kind::Error:
+            return "error: " + detail;
+    }
+    return "";
+}
 namespace {
 
 std::FILE* openForWriting(const std::string& path, const char* header) {
@@ -180,7 +202,7 @@ void RunRecorder::writeSummary(const RunSummary& s) const {
     std::fprintf(f, "  \"hover_evasions\": %d,\n", s.hoverEvasions);
     std::fprintf(f, "  \"stale_plans\": %d,\n", s.stalePlans);
     std::fprintf(f, "  \"finished\": %s,\n", s.finished ? "true" : "false");
-    std::fprintf(f, "  \"end_reason\": %s,\n", jsonString(s.endReason).c_str());
+    std::fprintf(f, "  \"end_reason\": %s,\n", jsonString(s.endReason.text()).c_str());
     std::fprintf(f, "  \"known_volume_m3\": %.4f,\n", s.knownVolume);
     std::fprintf(f, "  \"box_volume_m3\": %.4f,\n", s.boxVolume);
     std::fprintf(f, "  \"exploration_start_s\": %.3f,\n", s.explorationStart);

@@ -76,7 +76,7 @@ void printSummary(const eval::RunSummary& s, const std::string& dir) {
               << "  collisions NOC      " << s.collisions << "  (static: " << s.staticCollisions
               << ")\n"
               << "  plans               " << s.iterations << "\n"
-              << "  finished            " << (s.finished ? "yes" : "no") << " (" << s.endReason
+              << "  finished            " << (s.finished ? "yes" : "no") << " (" << s.endReason.text()
               << ")\n"
               << "  wall time           " << s.wallTime << " s  ("
               << (s.wallTime > 0 ? (s.explorationTime / s.wallTime) : 0.0) << " x real time)\n";
@@ -160,7 +160,7 @@ int ExploreApp::run() {
             summary_ = runInterruptible(mission, g_running);
         }
         printSummary(summary_, outputDir_);
-        return summary_.endReason == "interrupted" ? 130 : 0;
+        return summary_.endReason.kind == eval::EndReason::Kind::Interrupted ? 130 : 0;
     });
 }
 

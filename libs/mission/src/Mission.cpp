@@ -112,30 +112,30 @@ struct Mission::Impl : FlightLoop::Mission {
             if (!made)
                 continue;  // stale by the time it was done: plan again from here
             const planning::Plan& plan = *made;
-            if (plan.status == planning::Plan::Status::Finished) {
-                finished = true;
-                endReason = "planner finished: " + plan.reason;
-                return;
-            }
-            if (plan.waypoints.empty() && plan.waitSeconds > 0) {
-                flight.hoverUntil(now() +
-                                  plan.waitSeconds);  // the planner waits for people to pass
-                continue;
-            }
-            if (plan.waypoints.empty()) {
-                if (++failedPlans >= settings().maxFailedPlans) {
-                    endReason = "planner returned no path " + std::to_string(failedPlans) +
-                                " times in a row";
+            switch (plan.status) {
+                case planning::Plan::Status::Finished:
+                    finished = true;
+                    endReason = eval::EndReason::plannerFinished(plan.reason);
                     return;
-                }
-                continue;
+                case planning::Plan::Status::Wait:
+                    flight.hoverUntil(now() + plan.waitSeconds);
+                    break;
+                case planning::Plan::Status::NoPath:
+                    if (++failedPlans >= settings().maxFailedPlans) {
+                        endReason = eval::EndReason::noPathLimit(failedPlans);
+                        return;
+                    }
+                    break;
+                case planning::Plan::Status::Path:
+                    failedPlans = 0;
+                    if (!flight.fly(plan))
+                        ++abortedPaths;
+                    core.recorder.flush();
+                    break;
             }
-            failedPlans = 0;
-            if (!flight.fly(plan))
-                ++abortedPaths;
-            core.recorder.flush();
         }
-        endReason = timeUp() ? "time limit" : "interrupted";
+        endReason = eval::EndReason::of(timeUp() ? eval::EndReason::Kind::TimeLimit
+                                                 : eval::EndReason::Kind::Interrupted);
     }
 
     eval::RunSummary summarize(double wallTime) {
@@ -185,7 +185,7 @@ struct Mission::Impl : FlightLoop::Mission {
     double pathLength = 0.0;
     int abortedPaths = 0;
     bool finished = false;
-    std::string endReason;
+    eval::EndReason endReason;
 };
 
 Mission::Mission(const ExperimentConfig& config, const std::string& outputDir, std::ostream* log)
@@ -204,8 +204,8 @@ eval::RunSummary Mission::run() {
             m.recordDue();
             if (!stopRequested_)
                 m.explore();
-            if (m.endReason.empty())
-                m.endReason = "interrupted";
+            if (m.endReason.kind == eval::EndReason::Kind::None)
+                m.endReason = eval::EndReason::of(eval::EndReason::Kind::Interrupted);
         },
         m.endReason, [&](double wall) { return m.summarize(wall); },
         [&](const eval::RunSummary& s) { m.writeOutputs(s); });

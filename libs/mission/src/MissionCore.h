@@ -31,7 +31,7 @@ class ExperimentConfig;
  * `summarize(wallSeconds)` gives the summary that `write(summary)` writes.
  */
 template <typename Loop, typename Summarize, typename Write>
-eval::RunSummary runKeepingOutputs(Loop&& loop, std::string& endReason, Summarize&& summarize,
+eval::RunSummary runKeepingOutputs(Loop&& loop, eval::EndReason& endReason, Summarize&& summarize,
                                    Write&& write) {
     const auto t0 = std::chrono::steady_clock::now();
     std::exception_ptr failure;
@@ -39,7 +39,7 @@ eval::RunSummary runKeepingOutputs(Loop&& loop, std::string& endReason, Summariz
         loop();
     } catch (const std::exception& e) {
         failure = std::current_exception();
-        endReason = "error: " + errorText(e);
+        endReason = eval::EndReason::error(errorText(e));
     }
     const eval::RunSummary summary = summarize(secondsSince(t0));
     write(summary);

@@ -1,6 +1,8 @@
 #include "PlannerDriver.h"
 
 #include <chrono>
+#include <stdexcept>
+#include <string>
 
 #include "StageClock.h"
 #include "daep/eval/RunRecorder.h"
@@ -12,12 +14,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 }  // namespace
-
-const char* planStatusName(const planning::Plan& plan) {
-    if (plan.status == planning::Plan::Status::Finished)
-        return "finished";
-    return plan.waypoints.empty() && plan.waitSeconds > 0 ? "wait" : "path";
-}
 
 PlannerDriver::PlannerDriver(std::unique_ptr<planning::ExplorationPlanner> planner,
                              const Setup& setup)
@@ -49,6 +45,11 @@ PlannerDriver::Call PlannerDriver::call(const planning::PlanningContext& context
         const auto timed = setup_.stages->time(Stage::Planning);
         c.plan = planner_->plan(ctx);
     }
+    if (!c.plan.wellFormed())  // a planner's bug, not the user's input
+        throw std::logic_error("planner " + planner_->name() + " returned a '" +
+                               planning::statusName(c.plan.status) + "' plan with " +
+                               std::to_string(c.plan.waypoints.size()) + " waypoints (" +
+                               c.plan.reason + ")");
     c.wallSec = secondsSince(t0);
     if (!c.plan.tree.empty())
         lastTree_ = c.plan.tree;
@@ -60,7 +61,7 @@ PlannerDriver::Call PlannerDriver::planFlight(double t, const FlatPose& pose, do
     Call c = call(context(t, pose));
     c.chargedSec = setup_.fixedTime ? setup_.fixedSeconds : c.wallSec;
     charged_ += c.chargedSec;
-    setup_.recorder->addPlan(recordTime, c.chargedSec, c.wallSec, planStatusName(c.plan),
+    setup_.recorder->addPlan(recordTime, c.chargedSec, c.wallSec, planning::statusName(c.plan.status),
                              c.plan.gain, static_cast<int>(c.plan.waypoints.size()), c.plan.reason);
     return c;
 }
@@ -74,10 +75,10 @@ PlannerDriver::Call PlannerDriver::planReplay(double t, const FlatPose& pose) {
     r.wallSec = c.wallSec;
     r.time = t;
     r.pose = pose;
-    r.status = planStatusName(c.plan);
+    r.status = planning::statusName(c.plan.status);
     r.gain = c.plan.gain;
     r.waypoints = static_cast<int>(c.plan.waypoints.size());
-    if (!c.plan.waypoints.empty()) {
+    if (c.plan.status == planning::Plan::Status::Path) {
         r.firstWaypoint = c.plan.waypoints.front().pose;
         r.safe = planner_->keepFlying(ctx, c.plan, 0) ? 1 : 0;
     }

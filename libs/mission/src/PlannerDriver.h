@@ -84,7 +84,4 @@ private:
     std::vector<planning::TreeEdge> lastTree_;
 };
 
-/** plans.csv's status of a plan: finished, wait (no waypoints, a wait) or path. */
-const char* planStatusName(const planning::Plan& plan);
-
 }  // namespace daep::mission

@@ -146,7 +146,7 @@ struct RawlogMission::Impl {
     double nextPlan = 0.0;
     double pathLength = 0.0;
     std::size_t frameCount = 0;
-    std::string endReason;
+    eval::EndReason endReason;
 };
 
 RawlogMission::RawlogMission(const ExperimentConfig& config, const std::string& outputDir,
@@ -178,9 +178,10 @@ eval::RunSummary RawlogMission::run() {
                 m.handleFrame();
             } while (!stopRequested_ && m.source->next(m.frame));
             m.noteFramesOutsidePoses();
-            m.endReason = stopRequested_          ? "interrupted"
-                          : m.params.file.empty() ? "end of frames"
-                                                  : "end of rawlog";
+            using Kind = eval::EndReason::Kind;
+            m.endReason = eval::EndReason::of(stopRequested_          ? Kind::Interrupted
+                                              : m.params.file.empty() ? Kind::EndOfFrames
+                                                                      : Kind::EndOfRawlog);
         },
         m.endReason, [&](double wall) { return m.summarize(wall); },
         [&](const eval::RunSummary& s) { m.writeOutputs(s); });

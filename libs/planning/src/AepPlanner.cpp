@@ -332,7 +332,7 @@ Plan AepPlanner::planAtDeadline(const PlanningContext& context) {
     }
     previousBranch_.clear();
     Plan plan;
-    plan.status = Plan::Status::Path;
+    plan.status = Plan::Status::NoPath;
     plan.tree = tree_.edges();
     plan.reason =
         "deadline: no branch with gain after " + std::to_string(tree_.size() - 1) + " nodes";
@@ -440,13 +440,13 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
         return out;
     }
     if (context.deadline.passed()) {  // cut short: no judgement on the frontiers
-        plan.status = Plan::Status::Path;
+        plan.status = Plan::Status::NoPath;
         why << "deadline: global tree cut at " << tree_.size() - 1 << " nodes, no path yet";
         plan.reason = why.str();
         return plan;
     }
     if (peopleBlockFrontiers(context)) {
-        plan.status = Plan::Status::Path;
+        plan.status = Plan::Status::NoPath;
         why << "global: people block the way to " << cache_.size() << " frontiers";
         plan.reason = why.str();
         return plan;
@@ -459,8 +459,7 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
         why << (cache_.size() == 0 ? "no frontiers left" : "no frontier reachable") << " after "
             << globalFailures_ << " global plans";
     } else {
-        plan.status = Plan::Status::Path;
-        plan.waitSeconds = params_.globalRetryWait;
+        plan.waitFor(params_.globalRetryWait);
         why << "global: no path to any of " << cache_.size() << " frontiers (" << tree_.size() - 1
             << " nodes)";
     }

@@ -231,7 +231,7 @@ Plan DaepPlanner::cutAtFirstUnsafe(const PlanningContext& context, Plan plan) co
     while (safe < moves.size() && obstacles_.isSafe(moves[safe]))
         ++safe;
     if (safe < plan.waypoints.size()) {
-        plan.waypoints.resize(safe);
+        plan.cutTo(safe);
         plan.reason += safe == 0 ? "; first move unsafe" : "; cut before an unsafe move";
     }
     return plan;
@@ -249,7 +249,7 @@ Plan DaepPlanner::wait(const PlanningContext& context, const std::string& why) c
         plan.reason = "wait, looking around: " + why;
         return plan;
     }
-    plan.waitSeconds = params_.waitTime;
+    plan.waitFor(params_.waitTime);
     plan.reason = "wait: " + why;
     return plan;
 }
@@ -417,7 +417,7 @@ Plan DaepPlanner::cutBeforeTrap(const PlanningContext& context, Plan plan) const
         const Waypoint& stop = plan.waypoints[k];
         if (!isTrap(context, stop.pose.position, stop.arrivalTime))
             continue;
-        plan.waypoints.resize(k);
+        plan.cutTo(k);
         plan.reason += k == 0 ? "; first stop a trap" : "; cut before a trap";
         break;
     }

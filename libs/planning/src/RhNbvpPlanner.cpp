@@ -96,7 +96,7 @@ Plan RhNbvpPlanner::makePlan(const PlanningContext& context) {
     if (best_ < 0 ||
         (tree_.node(best_).score <= params_.zeroGain && nodes < params_.initialIterations)) {
         why << "tree stalled: " << nodes << " nodes after " << samples_ << " samples";
-        plan.status = Plan::Status::Path;
+        plan.status = Plan::Status::NoPath;
         plan.reason = why.str();
         return plan;
     }

@@ -22,6 +22,31 @@ struct MetricsSample {
     int collisions = 0;
 };
 
+/** Why a run ended; summary.json's end_reason is its text(). */
+struct EndReason {
+    enum class Kind {
+        None,             ///< not ended (yet)
+        PlannerFinished,  ///< the planner judged the exploration complete (detail: its reason)
+        NoPathLimit,      ///< max_failed_plans plans in a row had no path (detail: how many)
+        TimeLimit,
+        EndOfFrames,  ///< an open-loop source ran out of frames
+        EndOfRawlog,
+        Interrupted,  ///< Ctrl-C or a stop request
+        Error,        ///< an exception ended the loop (detail: its one-line text)
+    };
+    Kind kind = Kind::None;
+    std::string detail;
+
+    static EndReason plannerFinished(std::string why) {
+        return {Kind::PlannerFinished, std::move(why)};
+    }
+    static EndReason noPathLimit(int plans) { return {Kind::NoPathLimit, std::to_string(plans)}; }
+    static EndReason error(std::string text) { return {Kind::Error, std::move(text)}; }
+    static EndReason of(Kind kind) { return {kind, {}}; }
+
+    std::string text() const;
+};
+
 /** The final figures of a run (summary.json). */
 struct RunSummary {
     double coveragePercent = 0.0;
@@ -44,7 +69,7 @@ struct RunSummary {
     double knownVolume = 0.0;
     double boxVolume = 0.0;
     double explorationStart = 0.0;  ///< simulated time since spawn when exploration began
-    std::string endReason;
+    EndReason endReason;
     /** Run identification (world, mode, planner, start, seed): written as strings. */
     std::map<std::string, std::string> labels;
     /** Host, date and command line of the run; with buildInfo() it makes the "provenance" block. */

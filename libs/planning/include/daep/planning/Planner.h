@@ -44,20 +44,31 @@ struct TreeEdge {
 
 struct Plan {
     enum class Status {
-        Path,      ///< fly `waypoints` in order, then plan again
+        Path,      ///< fly `waypoints` (at least one) in order, then plan again
+        Wait,      ///< hover `waitSeconds` (> 0), then plan again (people to pass, a retry)
+        NoPath,    ///< nothing to fly now: plan again at once (max_failed_plans in a row end)
         Finished,  ///< the planner considers the exploration complete
     };
     Status status = Status::Finished;
-    std::vector<Waypoint> waypoints;
-    /** With no waypoints: hover this long, then plan again (waiting for people to pass). */
-    double waitSeconds = 0.0;
+    std::vector<Waypoint> waypoints;  ///< empty unless the status is Path
+    double waitSeconds = 0.0;         ///< how long a Wait hovers
     /** An escape from a person: the best move there is, flown to its end without re-checks. */
     bool escape = false;
     double gain = 0.0;   ///< gain of the chosen goal (m^3 of unknown volume)
     double score = 0.0;  ///< planner-specific value of the chosen branch
     std::string reason;  ///< short human-readable note (why finished, local/global, ...)
     std::vector<TreeEdge> tree;
+
+    /** Keeps the first n waypoints; a path cut to none becomes NoPath. */
+    void cutTo(std::size_t n);
+    /** Hover `seconds` before planning again: Wait, or NoPath when that is no time at all. */
+    void waitFor(double seconds);
+    /** Whether the status agrees with the waypoints and the wait (see Status). */
+    bool wellFormed() const;
 };
+
+/** The status as plans.csv writes it: path, wait, no_path, finished. */
+const char* statusName(Plan::Status status);
 
 /**
  * When a plan call must return (anytime planning): trees stop growing once it has passed and
