@@ -9,6 +9,7 @@
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/PeopleInput.h"
 #include "daep/planning/Planner.h"
+#include "daep/planning/PlannerRegistry.h"
 
 namespace {
 

@@ -19,6 +19,7 @@
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/PeopleInput.h"
 #include "daep/mission/RawlogMission.h"
+#include "daep/planning/PlannerRegistry.h"
 
 namespace {
 

@@ -6,7 +6,9 @@
 #include "PlanningTestUtil.h"
 #include "daep/common/Error.h"
 #include "daep/planning/AepPlanner.h"
+#include "daep/planning/FlightSpace.h"
 #include "daep/planning/Planner.h"
+#include "daep/planning/PlannerRegistry.h"
 
 namespace daep::planning {
 namespace {

@@ -7,6 +7,8 @@
 #include "daep/common/Error.h"
 #include "daep/perception/PersonTrack.h"
 #include "daep/planning/DaepPlanner.h"
+#include "daep/planning/FlightSpace.h"
+#include "daep/planning/PlannerRegistry.h"
 
 namespace daep::planning {
 namespace {

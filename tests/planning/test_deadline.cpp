@@ -3,6 +3,7 @@
 
 #include "PlanningTestUtil.h"
 #include "daep/perception/PersonTrack.h"
+#include "daep/planning/PlannerRegistry.h"
 
 namespace daep::planning {
 namespace {

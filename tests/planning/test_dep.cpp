@@ -7,6 +7,7 @@
 #include "daep/common/Error.h"
 #include "daep/planning/DepPlanner.h"
 #include "daep/planning/Planner.h"
+#include "daep/planning/PlannerRegistry.h"
 #include "daep/planning/Roadmap.h"
 #include "daep/planning/YawBinnedGain.h"
 

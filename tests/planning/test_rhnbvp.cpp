@@ -7,7 +7,9 @@
 
 #include "PlanningTestUtil.h"
 #include "daep/common/Error.h"
+#include "daep/planning/FlightSpace.h"
 #include "daep/planning/Planner.h"
+#include "daep/planning/PlannerRegistry.h"
 #include "daep/planning/RhNbvpPlanner.h"
 
 namespace daep::planning {

@@ -14,6 +14,7 @@
 #include "daep/mission/Mission.h"
 #include "daep/mission/RawlogMission.h"
 #include "daep/planning/Planner.h"
+#include "daep/planning/PlannerRegistry.h"
 #include "daep/world/WorldSpec.h"
 
 namespace daep::mission {
@@ -76,8 +77,8 @@ void printSummary(const eval::RunSummary& s, const std::string& dir) {
               << "  collisions NOC      " << s.collisions << "  (static: " << s.staticCollisions
               << ")\n"
               << "  plans               " << s.iterations << "\n"
-              << "  finished            " << (s.finished ? "yes" : "no") << " (" << s.endReason.text()
-              << ")\n"
+              << "  finished            " << (s.finished ? "yes" : "no") << " ("
+              << s.endReason.text() << ")\n"
               << "  wall time           " << s.wallTime << " s  ("
               << (s.wallTime > 0 ? (s.explorationTime / s.wallTime) : 0.0) << " x real time)\n";
 }

@@ -105,7 +105,8 @@ std::optional<planning::Plan> FlightLoop::planOnce(double recordTime) {
     if (hoverUntil(sim_.time() + made.chargedSec))
         return std::nullopt;
     const bool newFrames = sim_.nextFrameTime() != framesBefore;
-    if (newFrames && core_.driver.usesPeople() && made.plan.status == planning::Plan::Status::Path) {
+    if (newFrames && core_.driver.usesPeople() &&
+        made.plan.status == planning::Plan::Status::Path) {
         const auto timed = core_.stages.time(Stage::Checks);
         if (!core_.driver.planner().startsSafely(context(), made.plan)) {
             ++stalePlans_;

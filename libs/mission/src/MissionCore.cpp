@@ -7,6 +7,7 @@
 #include "ComponentParams.h"
 #include "daep/eval/Statistics.h"
 #include "daep/mission/ExperimentConfig.h"
+#include "daep/planning/PlannerRegistry.h"
 
 namespace daep::mission {
 

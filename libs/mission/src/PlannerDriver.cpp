@@ -61,8 +61,9 @@ PlannerDriver::Call PlannerDriver::planFlight(double t, const FlatPose& pose, do
     Call c = call(context(t, pose));
     c.chargedSec = setup_.fixedTime ? setup_.fixedSeconds : c.wallSec;
     charged_ += c.chargedSec;
-    setup_.recorder->addPlan(recordTime, c.chargedSec, c.wallSec, planning::statusName(c.plan.status),
-                             c.plan.gain, static_cast<int>(c.plan.waypoints.size()), c.plan.reason);
+    setup_.recorder->addPlan(recordTime, c.chargedSec, c.wallSec,
+                             planning::statusName(c.plan.status), c.plan.gain,
+                             static_cast<int>(c.plan.waypoints.size()), c.plan.reason);
     return c;
 }
 

@@ -11,6 +11,7 @@
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/mapping/ExplorationMap.h"
+#include "daep/planning/FlightSpace.h"
 
 namespace daep::planning {
 namespace {

@@ -8,6 +8,7 @@
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/mapping/ExplorationMap.h"
+#include "daep/planning/FlightSpace.h"
 #include "daep/planning/Tree.h"
 
 namespace daep::planning {

@@ -3,12 +3,6 @@
 #include <cmath>
 #include <utility>
 
-#include "daep/common/Error.h"
-#include "daep/planning/AepPlanner.h"
-#include "daep/planning/DaepPlanner.h"
-#include "daep/planning/DepPlanner.h"
-#include "daep/planning/RhNbvpPlanner.h"
-
 namespace daep::planning {
 
 double MotionLimits::travelTime(const FlatPose& a, const FlatPose& b) const {
@@ -56,51 +50,6 @@ const char* statusName(Plan::Status status) {
             return "finished";
     }
     return "?";
-}
-
-namespace {
-
-using PlannerFactory = std::unique_ptr<ExplorationPlanner> (*)(
-    const mrpt::config::CConfigFileBase& config, std::uint64_t seed);
-
-/** Every planner reads its own parameters and the shared [gain] section. */
-template <class PlannerType, class ParamsType>
-std::unique_ptr<ExplorationPlanner> make(const mrpt::config::CConfigFileBase& config,
-                                         std::uint64_t seed) {
-    return std::make_unique<PlannerType>(ParamsType::fromConfig(config),
-                                         GainParams::fromConfig(config), seed);
-}
-
-/** Every planner, by the name used in [experiment] planner; keep sorted by name. */
-const std::vector<std::pair<std::string, PlannerFactory>>& factories() {
-    static const std::vector<std::pair<std::string, PlannerFactory>> table = {
-        {"aep", &make<AepPlanner, AepParams>},
-        {"daep", &make<DaepPlanner, DaepParams>},
-        {"dep", &make<DepPlanner, DepParams>},
-        {"rhnbvp", &make<RhNbvpPlanner, RhNbvpParams>},
-    };
-    return table;
-}
-
-}  // namespace
-
-std::vector<std::string> plannerNames() {
-    std::vector<std::string> names;
-    for (const auto& entry : factories())
-        names.push_back(entry.first);
-    return names;
-}
-
-std::unique_ptr<ExplorationPlanner> createPlanner(const std::string& name,
-                                                  const mrpt::config::CConfigFileBase& config,
-                                                  std::uint64_t seed) {
-    for (const auto& [known, factory] : factories())
-        if (known == name)
-            return factory(config, seed);
-    std::string valid;
-    for (const std::string& n : plannerNames())
-        valid += (valid.empty() ? "" : ", ") + n;
-    throw InputError("unknown planner '" + name + "'; valid planners: " + valid);
 }
 
 }  // namespace daep::planning

@@ -1,7 +1,5 @@
 #include "daep/planning/Tree.h"
 
-#include "daep/mapping/ExplorationMap.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -64,48 +62,6 @@ std::vector<TreeEdge> Tree::edges() const {
             result.push_back({nodes_[n.parent].position, n.position});
     }
     return result;
-}
-
-Eigen::Vector3d steer(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double maxStep) {
-    const Eigen::Vector3d d = to - from;
-    const double length = d.norm();
-    if (length <= maxStep)
-        return to;
-    return from + d * (maxStep / length);
-}
-
-Aabb shrink(const Aabb& box, double margin) {
-    Aabb out;
-    for (int a = 0; a < 3; ++a) {
-        const double lo = box.min[a] + margin;
-        const double hi = box.max[a] - margin;
-        const double mid = 0.5 * (box.min[a] + box.max[a]);
-        out.min[a] = lo <= hi ? lo : mid;
-        out.max[a] = lo <= hi ? hi : mid;
-    }
-    return out;
-}
-
-Eigen::Vector3d sampleInBox(const Aabb& box, std::mt19937_64& rng) {
-    Eigen::Vector3d p;
-    for (int a = 0; a < 3; ++a) {
-        p[a] = std::uniform_real_distribution<double>(box.min[a], box.max[a])(rng);
-    }
-    return p;
-}
-
-double sampleYaw(std::mt19937_64& rng) {
-    return std::uniform_real_distribution<double>(-M_PI, M_PI)(rng);
-}
-
-bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
-                    const Eigen::Vector3d& b, double radius, bool leavingBlockedRoot) {
-    if (!leavingBlockedRoot)
-        return map.isSegmentFree(a, b, radius);
-    const double length = (b - a).norm();
-    const Eigen::Vector3d start =
-        length > radius ? Eigen::Vector3d(a + (b - a) * (radius / length)) : b;
-    return map.isSegmentFreeOrUnknown(start, b, radius) && map.isSegmentFree(b, b, radius);
 }
 
 }  // namespace daep::planning

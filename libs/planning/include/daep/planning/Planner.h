@@ -3,7 +3,6 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -154,17 +153,5 @@ public:
         return true;
     }
 };
-
-/** Planner names accepted by createPlanner, sorted. */
-std::vector<std::string> plannerNames();
-
-/**
- * Creates a planner by name, reading its parameters from the config (its own section plus
- * [gain] and [planning]). Throws InputError for an unknown name (listing the valid ones) or a
- * missing/bad key.
- */
-std::unique_ptr<ExplorationPlanner> createPlanner(const std::string& name,
-                                                  const mrpt::config::CConfigFileBase& config,
-                                                  std::uint64_t seed);
 
 }  // namespace daep::planning
