@@ -2,14 +2,19 @@
 // Input: the experiment file, then optionally a line "--set" and one override per line.
 #include <cstdint>
 
-#include "ComponentParams.h"
 #include "FuzzSupport.h"
 #include "MissionSetup.h"
 #include "Outputs.h"
+#include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/PeopleInput.h"
+#include "daep/perception/PeopleDetector.h"
+#include "daep/perception/PeopleTracker.h"
 #include "daep/planning/Planner.h"
 #include "daep/planning/PlannerRegistry.h"
+#include "daep/sim/DepthCamera.h"
+#include "daep/sim/Drone.h"
+#include "daep/world/People.h"
 
 namespace {
 
@@ -17,12 +22,12 @@ void readEveryComponent(const daep::mission::ExperimentConfig& experiment) {
     using namespace daep::mission;
     const auto& cfg = experiment.config();
     const Settings settings = loadSettings(experiment);
-    loadCameraParams(cfg);
-    loadDroneParams(cfg);
-    loadPeopleParams(cfg);
-    loadMapParams(cfg);
-    loadDetectorParams(cfg);
-    loadTrackerParams(cfg);
+    daep::sim::CameraParams::fromConfig(cfg);
+    daep::sim::DroneParams::fromConfig(cfg);
+    daep::world::PeopleParams::fromConfig(cfg);
+    daep::mapping::MapParams::fromConfig(cfg);
+    daep::perception::DetectorParams::fromConfig(cfg);
+    daep::perception::TrackerParams::fromConfig(cfg);
     loadOutputParams(cfg);
     PeopleInputParams::fromConfig(cfg);
     for (const auto& name : daep::planning::plannerNames())

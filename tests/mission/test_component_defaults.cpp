@@ -7,8 +7,13 @@
 #include <string>
 #include <tuple>
 
-#include "ComponentParams.h"
+#include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/PeopleInput.h"
+#include "daep/perception/PeopleDetector.h"
+#include "daep/perception/PeopleTracker.h"
+#include "daep/sim/DepthCamera.h"
+#include "daep/sim/Drone.h"
+#include "daep/world/People.h"
 
 namespace {
 
@@ -28,7 +33,7 @@ void expectSame(std::initializer_list<Field> fields) {
 }
 
 TEST_F(ComponentDefaults, Camera) {
-    const auto d = daep::sim::CameraParams{}, i = daep::mission::loadCameraParams(ini);
+    const auto d = daep::sim::CameraParams{}, i = daep::sim::CameraParams::fromConfig(ini);
     expectSame({{"width", d.width, i.width},
                 {"height", d.height, i.height},
                 {"hfov_deg", d.hfovRad, i.hfovRad},
@@ -38,18 +43,18 @@ TEST_F(ComponentDefaults, Camera) {
 }
 
 TEST_F(ComponentDefaults, DroneAndPeople) {
-    const auto d = daep::sim::DroneParams{}, i = daep::mission::loadDroneParams(ini);
+    const auto d = daep::sim::DroneParams{}, i = daep::sim::DroneParams::fromConfig(ini);
     EXPECT_DOUBLE_EQ(d.speed, i.speed);
     EXPECT_NEAR(d.yawRate, i.yawRate, 1e-7);  // the ini gives 1 rad/s in degrees, to 7 digits
     EXPECT_EQ(d.boxSize, i.boxSize);
-    const auto dp = daep::world::PeopleParams{}, ip = daep::mission::loadPeopleParams(ini);
+    const auto dp = daep::world::PeopleParams{}, ip = daep::world::PeopleParams::fromConfig(ini);
     EXPECT_DOUBLE_EQ(dp.speed, ip.speed);
     EXPECT_NEAR(dp.turnRate, ip.turnRate, 1e-7);
     EXPECT_EQ(dp.bodySize, ip.bodySize);
 }
 
 TEST_F(ComponentDefaults, Map) {
-    const auto d = daep::mapping::MapParams{}, i = daep::mission::loadMapParams(ini);
+    const auto d = daep::mapping::MapParams{}, i = daep::mapping::MapParams::fromConfig(ini);
     expectSame({{"resolution", d.resolution, i.resolution},
                 {"max_range", d.maxRange, i.maxRange},
                 {"prob_hit", d.probHit, i.probHit},
@@ -60,7 +65,8 @@ TEST_F(ComponentDefaults, Map) {
 }
 
 TEST_F(ComponentDefaults, Detector) {
-    const auto d = daep::perception::DetectorParams{}, i = daep::mission::loadDetectorParams(ini);
+    const auto d = daep::perception::DetectorParams{},
+               i = daep::perception::DetectorParams::fromConfig(ini);
     expectSame({{"max_range", d.maxRange, i.maxRange},
                 {"floor_height", d.floorHeight, i.floorHeight},
                 {"ceiling_height", d.ceilingHeight, i.ceilingHeight},
@@ -87,7 +93,8 @@ TEST_F(ComponentDefaults, Detector) {
 }
 
 TEST_F(ComponentDefaults, TrackerAndPeopleInput) {
-    const auto d = daep::perception::TrackerParams{}, i = daep::mission::loadTrackerParams(ini);
+    const auto d = daep::perception::TrackerParams{},
+               i = daep::perception::TrackerParams::fromConfig(ini);
     expectSame(
         {{"accel_noise", d.predictor.accelNoise, i.predictor.accelNoise},
          {"measurement_sigma", d.predictor.measurementSigma, i.predictor.measurementSigma},

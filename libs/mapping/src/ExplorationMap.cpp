@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "MapImpl.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 
 namespace daep::mapping {
@@ -273,6 +274,23 @@ bool ExplorationMap::writeBinary(const std::string& path) const {
         return false;
     }
     return bool(out.flush());
+}
+
+MapParams MapParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
+    const ConfigReader r(cfg, "map");
+    MapParams p;
+    p.resolution = requirePositive(r, "resolution");
+    p.maxRange = requirePositive(r, "max_range");
+    p.probHit = r.requireDouble("prob_hit");
+    p.probMiss = r.requireDouble("prob_miss");
+    p.clampMin = r.requireDouble("clamp_min");
+    p.clampMax = r.requireDouble("clamp_max");
+    p.noReturnIsFree = r.requireBool("no_return_free");
+    if (p.probHit <= 0.5 || p.probHit >= 1)
+        throw InputError("[map] prob_hit: must be in (0.5, 1)");
+    if (p.probMiss <= 0 || p.probMiss >= 0.5)
+        throw InputError("[map] prob_miss: must be in (0, 0.5)");
+    return p;
 }
 
 }  // namespace daep::mapping

@@ -9,15 +9,18 @@
 #include <map>
 #include <stdexcept>
 
-#include "ComponentParams.h"
 #include "MissionSetup.h"
 #include "Outputs.h"
 #include "daep/common/Error.h"
 #include "daep/common/IniText.h"
+#include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/PeopleInput.h"
 #include "daep/planning/Planner.h"
 #include "daep/planning/PlannerRegistry.h"
+#include "daep/sim/DepthCamera.h"
+#include "daep/sim/Drone.h"
+#include "daep/world/People.h"
 
 namespace fs = std::filesystem;
 
@@ -109,10 +112,10 @@ std::map<std::string, WorldInputs> loadWorlds(const eval::BenchmarkConfig& confi
 void checkParameters(const ExperimentConfig& experiment) {
     const auto& cfg = experiment.config();
     const Settings settings = loadSettings(experiment);
-    loadPeopleParams(cfg);
-    loadCameraParams(cfg);
-    loadDroneParams(cfg);
-    loadMapParams(cfg);
+    world::PeopleParams::fromConfig(cfg);
+    sim::CameraParams::fromConfig(cfg);
+    sim::DroneParams::fromConfig(cfg);
+    mapping::MapParams::fromConfig(cfg);
     loadOutputParams(cfg);
     PeopleInputParams::fromConfig(cfg);
     planning::createPlanner(settings.plannerName, cfg, settings.seed);

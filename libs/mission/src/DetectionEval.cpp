@@ -8,7 +8,6 @@
 #include <cmath>
 #include <ostream>
 
-#include "ComponentParams.h"
 #include "FrameStep.h"
 #include "StageClock.h"
 #include "daep/common/Config.h"
@@ -19,6 +18,7 @@
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/mission/PeopleInput.h"
 #include "daep/mission/RawlogSource.h"
+#include "daep/world/People.h"
 
 namespace daep::mission {
 namespace {
@@ -147,7 +147,7 @@ public:
     Evaluator(const ExperimentConfig& config, const DetectionEvalOptions& options,
               mapping::ExplorationMap& map, const std::string& sourceName)
         : options_(options),
-          bodySize_(loadPeopleParams(config.config()).bodySize),
+          bodySize_(world::PeopleParams::fromConfig(config.config()).bodySize),
           people_(detectedPeople(config), 0),
           step_(stepParts(map, sourceName)) {}
 
@@ -262,7 +262,8 @@ DetectionScore evaluateDetection(const ExperimentConfig& config, const std::stri
     if (!frame.truePeople)
         throw InputError(rawlogPath +
                          ": no PERSON_<i> poses (record a dynamic run with output.rawlog = true)");
-    mapping::ExplorationMap map(loadMapParams(config.config()), mapBoxAround(frame.robot.position));
+    mapping::ExplorationMap map(mapping::MapParams::fromConfig(config.config()),
+                                mapBoxAround(frame.robot.position));
     Evaluator evaluator(config, options, map, source.name());
     if (frameCsv)
         *frameCsv << "t,eligible,found,detections,false_positives,confirmed_tracks\n";

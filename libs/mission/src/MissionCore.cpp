@@ -4,10 +4,12 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "ComponentParams.h"
 #include "daep/eval/Statistics.h"
+#include "daep/mapping/ExplorationMap.h"
 #include "daep/mission/ExperimentConfig.h"
 #include "daep/planning/PlannerRegistry.h"
+#include "daep/sim/Drone.h"
+#include "daep/world/People.h"
 
 namespace daep::mission {
 
@@ -20,10 +22,10 @@ MissionCore::MissionCore(const ExperimentConfig& config, const Use& how, StageCl
       recorder(outputDir, how.plans),
       outputs(loadOutputParams(config.config())),
       scene(outputs, outputDir, logStream),
-      map(loadMapParams(config.config()), how.explorationBox),
+      map(mapping::MapParams::fromConfig(config.config()), how.explorationBox),
       peopleInput(PeopleInputParams::fromConfig(config.config()),
                   settings.seed * 0xD1B54A32D192ED03ull + 7),
-      bodySize(loadPeopleParams(config.config()).bodySize),
+      bodySize(world::PeopleParams::fromConfig(config.config()).bodySize),
       driver(planning::createPlanner(settings.plannerName, config.config(),
                                      settings.seed * 0x9E3779B97F4A7C15ull + 1),
              driverSetup(config)),
@@ -40,7 +42,7 @@ MissionCore::MissionCore(const ExperimentConfig& config, const Use& how, StageCl
 }
 
 PlannerDriver::Setup MissionCore::driverSetup(const ExperimentConfig& config) {
-    const sim::DroneParams drone = loadDroneParams(config.config());
+    const sim::DroneParams drone = sim::DroneParams::fromConfig(config.config());
     PlannerDriver::Setup d;
     d.map = &map;
     d.explorationBox = use.explorationBox;

@@ -3,12 +3,13 @@
 #include <cmath>
 #include <memory>
 
-#include "ComponentParams.h"
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 #include "daep/mapping/DepthRays.h"
 #include "daep/mapping/DepthUnprojection.h"
+#include "daep/perception/PeopleDetector.h"
+#include "daep/perception/PeopleTracker.h"
 #include "daep/world/RayCaster.h"
 
 namespace daep::mission {
@@ -73,8 +74,8 @@ PeopleInputParams PeopleInputParams::fromConfig(const mrpt::config::CConfigFileB
     p.sensedRange = requirePositive(r, "sensed_range");
     p.sensedNoiseSigma = requireNonNegative(r, "sensed_noise_sigma");
     p.excludeFromMap = r.requireBool("exclude_from_map");
-    p.tracker = loadTrackerParams(config);
-    p.detector = loadDetectorParams(config);
+    p.tracker = perception::TrackerParams::fromConfig(config);
+    p.detector = perception::DetectorParams::fromConfig(config);
     return p;
 }
 

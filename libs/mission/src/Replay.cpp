@@ -1,6 +1,5 @@
 #include "daep/mission/Replay.h"
 
-#include "ComponentParams.h"
 #include "FrameStep.h"
 #include "MissionSetup.h"
 #include "StageClock.h"
@@ -14,7 +13,8 @@ ReplayResult replayTrajectory(const ExperimentConfig& config, const std::string&
     const Settings settings = loadSettings(config);
     const world::WorldSpec world = loadWorld(settings, config.source());
     TrajectorySource source(world, config.config(), settings.seed, trajectoryCsv);
-    mapping::ExplorationMap map(loadMapParams(config.config()), world.explorationBox);
+    mapping::ExplorationMap map(mapping::MapParams::fromConfig(config.config()),
+                                world.explorationBox);
     StageClock stages;
     FrameStep::Parts parts;
     parts.map = &map;

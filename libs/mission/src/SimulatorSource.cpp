@@ -8,11 +8,13 @@
 #include <optional>
 #include <sstream>
 
-#include "ComponentParams.h"
 #include "MissionSetup.h"
 #include "StageClock.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
+#include "daep/sim/DepthCamera.h"
+#include "daep/sim/Drone.h"
+#include "daep/world/People.h"
 
 namespace daep::mission {
 namespace {
@@ -49,11 +51,12 @@ SimulatorSource::SimulatorSource(world::WorldSpec world,
                                  const mrpt::config::CConfigFileBase& config, int start,
                                  double climb, std::uint64_t seed, StageClock* stages)
     : world_(std::move(world)),
-      people_(world_.people, loadPeopleParams(config)),
+      people_(world_.people, world::PeopleParams::fromConfig(config)),
       caster_(world_),
       statics_(world_),
-      camera_(loadCameraParams(config)),
-      drone_(loadDroneParams(config), restingOn(startOf(world_, start), loadDroneParams(config))),
+      camera_(sim::CameraParams::fromConfig(config)),
+      drone_(sim::DroneParams::fromConfig(config),
+             restingOn(startOf(world_, start), sim::DroneParams::fromConfig(config))),
       monitor_(drone_.params().boxSize, people_.params().bodySize, &statics_),
       noise_(seed),
       depth_(std::make_shared<mrpt::obs::CObservation3DRangeScan>()),

@@ -6,8 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "ComponentParams.h"
 #include "daep/common/Error.h"
+#include "daep/sim/DepthCamera.h"
+#include "daep/world/People.h"
 
 namespace daep::mission {
 namespace {
@@ -62,9 +63,9 @@ TrajectorySource::TrajectorySource(const world::WorldSpec& world,
     : path_(trajectoryCsv),
       trajectory_(readTrajectory(trajectoryCsv)),
       world_(world),
-      people_(world.people, loadPeopleParams(config)),
+      people_(world.people, world::PeopleParams::fromConfig(config)),
       caster_(world),
-      camera_(loadCameraParams(config)),
+      camera_(sim::CameraParams::fromConfig(config)),
       noise_(seed),
       period_(1.0 / camera_.params().rateHz),
       t_(trajectory_.front().time) {}

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "daep/common/ConfigChecks.h"
+#include "daep/common/Error.h"
 #include "daep/mapping/DepthRays.h"
 #include "daep/mapping/DepthUnprojection.h"
 #include "daep/mapping/ExplorationMap.h"
@@ -410,6 +412,41 @@ std::vector<PersonMeasurement> PeopleDetector::detect(const mrpt::obs::CObservat
 
 const std::vector<PersonDetection>& PeopleDetector::lastDetections() const {
     return impl_->detections;
+}
+
+DetectorParams DetectorParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
+    const ConfigReader r(cfg, "detector");
+    DetectorParams p;
+    p.maxRange = requirePositive(r, "max_range");
+    p.floorHeight = r.requireDouble("floor_height");
+    p.ceilingHeight = r.requireDouble("ceiling_height");
+    if (!(p.ceilingHeight > p.floorHeight))
+        throw InputError("[detector] ceiling_height: must be above floor_height");
+    p.maxPersonTop = requirePositive(r, "max_person_top");
+    p.minVerticalExtent = requireNonNegative(r, "min_vertical_extent");
+    p.maxWidth = requirePositive(r, "max_width");
+    p.maxDepthSpread = requirePositive(r, "max_depth_spread");
+    p.minArea = requireNonNegative(r, "min_area");
+    p.minEvidenceFraction = requireNonNegative(r, "min_evidence_fraction");
+    if (p.minEvidenceFraction > 1)
+        throw InputError("[detector] min_evidence_fraction: must be in [0, 1]");
+    p.depthJump = requirePositive(r, "depth_jump");
+    p.maxGrazingAngle = r.requireAngleDeg("max_grazing_deg");
+    if (!(p.maxGrazingAngle > 0 && p.maxGrazingAngle < M_PI / 2))
+        throw InputError("[detector] max_grazing_deg: must be in (0, 90)");
+    p.morphKernel = requireIntAtLeast(r, "morph_kernel_px", 1);
+    p.surfaceMargin = requireNonNegative(r, "surface_margin");
+    p.centreOffset = requireNonNegative(r, "centre_offset");
+    p.mergeDistance = requireNonNegative(r, "merge_distance");
+    p.sigmaAlong = requirePositive(r, "sigma_along");
+    p.sigmaAcross = requirePositive(r, "sigma_across");
+    p.imprintKeep = requireNonNegative(r, "imprint_keep_s");
+    p.minFreshFraction = requireNonNegative(r, "min_fresh_fraction");
+    p.seeThroughDepth = requireNonNegative(r, "see_through_depth");
+    p.bodyHalfWidth = requirePositive(r, "body_half_width");
+    p.bodyHeight = requirePositive(r, "body_height");
+    p.pixelStride = requireIntAtLeast(r, "pixel_stride", 1);
+    return p;
 }
 
 }  // namespace daep::perception

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "daep/common/ConfigChecks.h"
+#include "daep/common/Error.h"
 #include "daep/perception/Assignment.h"
 
 namespace daep::perception {
@@ -228,6 +230,23 @@ std::vector<TrackInfo> PeopleTracker::tracks() const {
 std::size_t PeopleTracker::confirmedCount() const {
     return std::size_t(std::count_if(tracks_.begin(), tracks_.end(),
                                      [this](const Track& t) { return confirmed(t); }));
+}
+
+TrackerParams TrackerParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
+    const ConfigReader r(cfg, "tracker");
+    TrackerParams p;
+    p.predictor.accelNoise = requireNonNegative(r, "accel_noise");
+    p.predictor.measurementSigma = requirePositive(r, "measurement_sigma");
+    p.predictor.initialSpeedSigma = requirePositive(r, "initial_speed_sigma");
+    p.dropAfter = requirePositive(r, "drop_after_s");
+    p.dropAfterMissesInView = requireIntAtLeast(r, "drop_after_misses_in_view", 1);
+    p.gateChi2 = requirePositive(r, "gate_chi2");
+    p.confirmHits = requireIntAtLeast(r, "confirm_hits", 1);
+    p.tentativeDropAfter = requirePositive(r, "tentative_drop_after_s");
+    p.staticAfter = requireNonNegative(r, "static_after_s");
+    p.staticRadius = requirePositive(r, "static_radius");
+    p.staticMemory = requireNonNegative(r, "static_memory_s");
+    return p;
 }
 
 }  // namespace daep::perception

@@ -10,6 +10,8 @@
 #include <utility>
 
 #include "GaussianSampler.h"
+#include "daep/common/ConfigChecks.h"
+#include "daep/common/Error.h"
 #include "daep/world/RayCaster.h"
 
 namespace daep::sim {
@@ -156,6 +158,24 @@ void DepthCamera::render(const world::RayCaster& scene, const FlatPose& drone, d
     obs.sensorPose = mrpt::poses::CPose3D(m.x(), m.y(), m.z(), 0.0, 0.0, 0.0);
     obs.timestamp = mrpt::Clock::fromDouble(timeSec);
     obs.sensorLabel = kSensorLabel;
+}
+
+CameraParams CameraParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
+    const ConfigReader r(cfg, "camera");
+    CameraParams p;
+    p.width = r.requireInt("width");
+    p.height = r.requireInt("height");
+    if (p.width < 2 || p.height < 2)
+        throw InputError("[camera] width/height: must be >= 2");
+    p.hfovRad = r.requireAngleDeg("hfov_deg");
+    if (p.hfovRad <= 0 || p.hfovRad >= M_PI)
+        throw InputError("[camera] hfov_deg: must be in (0, 180)");
+    p.maxRange = requirePositive(r, "max_range");
+    p.rateHz = requirePositive(r, "rate_hz");
+    p.noiseSigma = r.requireDouble("noise_sigma");
+    if (p.noiseSigma < 0)
+        throw InputError("[camera] noise_sigma: must be >= 0");
+    return p;
 }
 
 }  // namespace daep::sim

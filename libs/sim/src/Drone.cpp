@@ -4,6 +4,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "daep/common/ConfigChecks.h"
+#include "daep/common/Error.h"
+
 namespace daep::sim {
 
 Drone::Drone(DroneParams params, FlatPose start) : params_(std::move(params)), pose_(start) {
@@ -47,6 +50,16 @@ double Drone::advance(double dt) {
 double Drone::travelTime(const FlatPose& from, const FlatPose& to, const DroneParams& p) {
     return std::abs(wrapAngle(to.yaw - from.yaw)) / p.yawRate +
            (to.position - from.position).norm() / p.speed;
+}
+
+DroneParams DroneParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
+    const ConfigReader r(cfg, "drone");
+    DroneParams p;
+    p.speed = requirePositive(r, "speed");
+    p.yawRate = requirePositive(r, "yaw_rate_deg_s") * M_PI / 180.0;
+    p.boxSize = {requirePositive(r, "box_x"), requirePositive(r, "box_y"),
+                 requirePositive(r, "box_z")};
+    return p;
 }
 
 }  // namespace daep::sim

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 #include "daep/common/Types.h"
 
@@ -107,6 +108,16 @@ void PeopleSimulator::advancePerson(std::size_t i, double dt) {
             return;
         }
     }
+}
+
+PeopleParams PeopleParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
+    const ConfigReader r(cfg, "people");
+    PeopleParams p;
+    p.speed = requirePositive(r, "speed");
+    p.turnRate = requirePositive(r, "turn_rate_deg_s") * M_PI / 180.0;
+    p.bodySize = {requirePositive(r, "body_x"), requirePositive(r, "body_y"),
+                  requirePositive(r, "body_z")};
+    return p;
 }
 
 }  // namespace daep::world

@@ -8,6 +8,10 @@
 
 #include "daep/common/Types.h"
 
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
 namespace mrpt::obs {
 class CObservation3DRangeScan;
 }
@@ -43,6 +47,9 @@ struct MapParams {
      * clear their ray up to maxRange: outdoors the open sky is otherwise never known.
      */
     bool noReturnIsFree = true;
+
+    /** Reads and validates [map]; throws InputError naming the key. */
+    static MapParams fromConfig(const mrpt::config::CConfigFileBase& cfg);
 };
 
 /**

@@ -9,6 +9,10 @@
 #include "daep/common/Types.h"
 #include "daep/perception/PersonMeasurement.h"
 
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
 namespace mrpt::obs {
 class CObservation3DRangeScan;
 }
@@ -44,6 +48,9 @@ struct DetectorParams {
     double bodyHalfWidth = 0.5;      ///< of the body box whose unknown cells are remembered (m)
     double bodyHeight = 1.8;         ///< (m)
     int pixelStride = 1;             ///< look at every n-th pixel of every n-th row
+
+    /** Reads and validates [detector]; throws InputError naming the key. */
+    static DetectorParams fromConfig(const mrpt::config::CConfigFileBase& cfg);
 };
 
 /** One accepted cluster, for evaluation and display. */

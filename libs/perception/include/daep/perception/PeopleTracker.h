@@ -7,6 +7,10 @@
 #include "daep/perception/PersonMeasurement.h"
 #include "daep/perception/PersonTrack.h"
 
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
 namespace daep::perception {
 
 struct TrackerParams {
@@ -38,6 +42,9 @@ struct TrackerParams {
     double staticAfter = 5.0;
     double staticRadius = 0.4;
     double staticMemory = 10.0;
+
+    /** Reads and validates [tracker]; throws InputError naming the key. */
+    static TrackerParams fromConfig(const mrpt::config::CConfigFileBase& cfg);
 };
 
 /** One track as the tracker sees it (for display and evaluation). */

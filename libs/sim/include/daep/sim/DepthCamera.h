@@ -7,6 +7,10 @@
 
 #include "daep/common/Types.h"
 
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
 namespace mrpt::obs {
 class CObservation3DRangeScan;
 }
@@ -34,6 +38,9 @@ struct CameraParams {
     double cx() const { return 0.5 * (width - 1); }
     double cy() const { return 0.5 * (height - 1); }
     double vfovRad() const;
+
+    /** Reads and validates [camera]; throws InputError naming the key. */
+    static CameraParams fromConfig(const mrpt::config::CConfigFileBase& cfg);
 };
 
 /** Renders depth frames by ray casting and packs them as MRPT observations. */

@@ -4,12 +4,19 @@
 
 #include "daep/common/Types.h"
 
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
 namespace daep::sim {
 
 struct DroneParams {
     double speed = 0.5;    ///< m/s, straight lines
     double yawRate = 1.0;  ///< rad/s, turns on the spot
     Eigen::Vector3d boxSize{0.4, 0.4, 0.1};
+
+    /** Reads and validates [drone]; throws InputError naming the key. */
+    static DroneParams fromConfig(const mrpt::config::CConfigFileBase& cfg);
 };
 
 /**

@@ -5,12 +5,19 @@
 
 #include "daep/world/WorldSpec.h"
 
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
 namespace daep::world {
 
 struct PeopleParams {
-    double speed = 0.35;     ///< m/s
-    double turnRate = 1.0;   ///< rad/s; people turn on the spot towards the next waypoint
+    double speed = 0.35;    ///< m/s
+    double turnRate = 1.0;  ///< rad/s; people turn on the spot towards the next waypoint
     Eigen::Vector3d bodySize{1.0, 1.0, 1.8};  ///< box standing on z = 0, rotated by heading
+
+    /** Reads and validates [people]; throws InputError naming the key. */
+    static PeopleParams fromConfig(const mrpt::config::CConfigFileBase& cfg);
 };
 
 struct PersonState {
