@@ -225,3 +225,15 @@ TEST(PeopleDetector, RealKinectFrameOfAStaticSceneHasNoPerson) {
     map.insertObservation(*frame, robot);
     EXPECT_TRUE(detector.detect(*frame, robot, map).empty());
 }
+
+TEST(SeenEmptyIn, APlaceTheFrameSeesPastIsEmptyAPersonOrAPlaceOutOfViewIsNot) {
+    Scene s;
+    const FlatPose pose{{-3, 0, 1.2}, 0.0};
+    s.render(pose, 1.0, {standingAt(0.0, 1.0)});
+    const auto seenEmpty = perception::seenEmptyIn(&s.obs, pose, kBody);
+    EXPECT_TRUE(seenEmpty({0.0, -1.0}));   // in view, the floor and the east wall behind it
+    EXPECT_FALSE(seenEmpty({0.0, 1.0}));   // the person stands there
+    EXPECT_FALSE(seenEmpty({-5.0, 0.0}));  // behind the camera
+    EXPECT_FALSE(seenEmpty({2.5, -2.0}));  // the statue: the frame does not see past it
+    EXPECT_FALSE(perception::seenEmptyIn(nullptr, pose, kBody));  // no frame, no test
+}

@@ -6,8 +6,6 @@
 #include "daep/common/Config.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
-#include "daep/mapping/DepthRays.h"
-#include "daep/mapping/DepthUnprojection.h"
 #include "daep/perception/PeopleDetector.h"
 #include "daep/perception/PeopleTracker.h"
 #include "daep/world/RayCaster.h"
@@ -32,25 +30,6 @@ std::vector<Eigen::Vector3d> bodySamples(const world::PersonState& person,
 }
 
 }  // namespace
-
-perception::PeopleTracker::EmptyTest seenEmptyIn(const DepthView& view,
-                                                 const Eigen::Vector3d& bodySize) {
-    if (view.frame == nullptr)
-        return {};
-    const mapping::SensorFrame sensor = mapping::sensorFrameInWorld(*view.frame, view.robot);
-    const mrpt::obs::CObservation3DRangeScan& frame = *view.frame;
-    const auto rays = std::make_shared<const mapping::DepthRays>(frame);
-    return [&frame, rays, sensor, bodySize](const Eigen::Vector2d& xy) {
-        const Eigen::Vector3f middle(float(xy.x()), float(xy.y()), float(0.5 * bodySize.z()));
-        Eigen::Vector3f across = sensor.up.cross(middle - sensor.origin);
-        across = across.norm() > 1e-6f ? across.normalized() : sensor.left;
-        const float half = float(0.3 * bodySize.x());
-        for (const float side : {-half, 0.0f, half})
-            if (!mapping::seesPast(*rays, frame, sensor, middle + side * across, float(0.1)))
-                return false;
-        return true;
-    };
-}
 
 const char* peopleSourceName(PeopleSource source) {
     switch (source) {
@@ -113,7 +92,7 @@ void PeopleInput::detect(double t, const mrpt::obs::CObservation3DRangeScan& fra
                          const FlatPose& robot, const mapping::ExplorationMap& map,
                          const Eigen::Vector3d& bodySize) {
     detections_ = detector_.detect(frame, robot, map);
-    tracker_.update(t, detections_, seenEmptyIn({&frame, robot}, bodySize));
+    tracker_.update(t, detections_, perception::seenEmptyIn(&frame, robot, bodySize));
     forecasts_ = tracker_.forecasts();
 }
 
@@ -194,7 +173,7 @@ void PeopleInput::measure(double t, const std::vector<world::PersonState>& truth
         m.covariance = Eigen::Matrix2d::Identity() * r * r;
         seen.push_back(m);
     }
-    tracker_.update(t, seen, seenEmptyIn(view, bodySize));
+    tracker_.update(t, seen, perception::seenEmptyIn(view.frame, view.robot, bodySize));
     forecasts_ = tracker_.forecasts();
 }
 

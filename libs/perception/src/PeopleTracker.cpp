@@ -3,10 +3,13 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
+#include "daep/mapping/DepthRays.h"
+#include "daep/mapping/DepthUnprojection.h"
 #include "daep/perception/Assignment.h"
 
 namespace daep::perception {
@@ -230,6 +233,25 @@ std::vector<TrackInfo> PeopleTracker::tracks() const {
 std::size_t PeopleTracker::confirmedCount() const {
     return std::size_t(std::count_if(tracks_.begin(), tracks_.end(),
                                      [this](const Track& t) { return confirmed(t); }));
+}
+
+PeopleTracker::EmptyTest seenEmptyIn(const mrpt::obs::CObservation3DRangeScan* observation,
+                                     const FlatPose& robot, const Eigen::Vector3d& bodySize) {
+    if (observation == nullptr)
+        return {};
+    const mapping::SensorFrame sensor = mapping::sensorFrameInWorld(*observation, robot);
+    const mrpt::obs::CObservation3DRangeScan& frame = *observation;
+    const auto rays = std::make_shared<const mapping::DepthRays>(frame);
+    return [&frame, rays, sensor, bodySize](const Eigen::Vector2d& xy) {
+        const Eigen::Vector3f middle(float(xy.x()), float(xy.y()), float(0.5 * bodySize.z()));
+        Eigen::Vector3f across = sensor.up.cross(middle - sensor.origin);
+        across = across.norm() > 1e-6f ? across.normalized() : sensor.left;
+        const float half = float(0.3 * bodySize.x());
+        for (const float side : {-half, 0.0f, half})
+            if (!mapping::seesPast(*rays, frame, sensor, middle + side * across, float(0.1)))
+                return false;
+        return true;
+    };
 }
 
 TrackerParams TrackerParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {

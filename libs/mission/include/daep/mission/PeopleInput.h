@@ -65,14 +65,6 @@ struct CameraSight {
 };
 
 /**
- * The tracker's empty-place test for a frame: nobody stands at xy when the frame sees past
- * the middle of a body there, across its width (a person a little off still blocks one of
- * the three rays). Empty without a frame. The frame must outlive the test.
- */
-perception::PeopleTracker::EmptyTest seenEmptyIn(const DepthView& view,
-                                                 const Eigen::Vector3d& bodySize);
-
-/**
  * The people a people-aware planner sees: at every camera frame, measurements from the
  * chosen source go into one Kalman track per person (kept across frames), and forecasts()
  * gives the tracks' closed-form predictions.

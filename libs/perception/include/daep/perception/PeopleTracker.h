@@ -4,11 +4,15 @@
 #include <functional>
 #include <vector>
 
+#include "daep/common/Types.h"
 #include "daep/perception/PersonMeasurement.h"
 #include "daep/perception/PersonTrack.h"
 
 namespace mrpt::config {
 class CConfigFileBase;
+}
+namespace mrpt::obs {
+class CObservation3DRangeScan;
 }
 
 namespace daep::perception {
@@ -139,5 +143,14 @@ private:
     int nextAnonymousId_ = 1000000;
     int staticDropped_ = 0;
 };
+
+/**
+ * The tracker's empty-place test for a depth frame taken from `robot`: nobody stands at xy
+ * when the frame sees past the middle of a body there, across its width (a person a little
+ * off still blocks one of the three rays). Empty without a frame. The frame must outlive the
+ * test.
+ */
+PeopleTracker::EmptyTest seenEmptyIn(const mrpt::obs::CObservation3DRangeScan* frame,
+                                     const FlatPose& robot, const Eigen::Vector3d& bodySize);
 
 }  // namespace daep::perception
