@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "daep/planning/BlindWatch.h"
-#include "daep/planning/FrequencyMap.h"
+#include "daep/planning/DynamicFrequencyMap.h"
 
 namespace daep::planning {
 namespace {
@@ -11,7 +11,7 @@ namespace {
 /** A 10 x 10 m box of 1 m cells with people seen walking along the lane x = 5.5. */
 struct Walkway : ::testing::Test {
     Aabb box{{0, 0, 0}, {10, 10, 2}};
-    FrequencyMap dfm{box, 1.0};
+    DynamicFrequencyMap dfm{box, 1.0};
     BlindWatchParams params;
     BlindWatch watch;
 
@@ -56,7 +56,7 @@ TEST_F(Walkway, CellsSeenJustNowAreNoThreatButAgeAgain) {
 
 TEST_F(Walkway, QuietCellsAreNoWalkway) {
     params.busyThreshold = 0.5;
-    FrequencyMap mixed(box, 1.0);
+    DynamicFrequencyMap mixed(box, 1.0);
     for (int k = 0; k < 10; ++k)
         mixed.add({5.5, 5.5});
     mixed.add({2.5, 5.5});  // seen once against ten: below the threshold

@@ -44,7 +44,7 @@ class ScoredDaep : public DaepPlanner {
 public:
     using DaepPlanner::DaepPlanner;
     double value(double parent, double gain, double edge, const Eigen::Vector3d& p) const {
-        return branchValue(parent, gain, edge, p);
+        return branchScore(parent, gain, edge, p);
     }
 };
 

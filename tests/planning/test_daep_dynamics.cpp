@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "PlanningTestUtil.h"
+#include "daep/planning/DynamicFrequencyMap.h"
 #include "daep/planning/DynamicObstacles.h"
-#include "daep/planning/FrequencyMap.h"
 #include "daep/planning/GainEvaluator.h"
 
 namespace daep::planning {
@@ -188,7 +188,7 @@ TEST(BorderBoost, WeighsOnlySamplesNearTheBoxsSideFaces) {
     const auto map = test::makeMap(room);
     GainEvaluator plain(GainParams{});
     GainEvaluator boosted(GainParams{});
-    boosted.setBorderBoost(6.0, 1.0);
+    boosted.setYawAngleBooster(6.0, 1.0);
     // Far from every side face: no change (the floor and ceiling do not count).
     const Eigen::Vector3d middle(15, 15, 1);
     EXPECT_NEAR(boosted.gainAtYaw(*map, middle, 0.0), plain.gainAtYaw(*map, middle, 0.0), 1e-9);
@@ -200,8 +200,8 @@ TEST(BorderBoost, WeighsOnlySamplesNearTheBoxsSideFaces) {
     EXPECT_LT(b, 6.0 * p);
 }
 
-TEST(FrequencyMap, CountsObservationsPerCellNormalisedByTheBusiest) {
-    FrequencyMap dfm(test::box(-2, -2, 0, 2, 2, 2), 1.0);
+TEST(DynamicFrequencyMap, CountsObservationsPerCellNormalisedByTheBusiest) {
+    DynamicFrequencyMap dfm(test::box(-2, -2, 0, 2, 2, 2), 1.0);
     EXPECT_EQ(dfm.width(), 4);
     EXPECT_EQ(dfm.height(), 4);
     EXPECT_EQ(dfm.value({0.5, 0.5}), 0.0);  // nothing seen yet

@@ -143,8 +143,8 @@ void AepPlanner::setParent(int node, int parent) {
     tree_.node(node).parent = parent;
 }
 
-YawGain AepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& from,
-                           const Eigen::Vector3d& p, double arrival, bool rayCast) {
+YawGain AepPlanner::gainOnArrival(const PlanningContext& context, const Eigen::Vector3d& from,
+                                  const Eigen::Vector3d& p, double arrival, bool rayCast) {
     (void)arrival;
     (void)from;
     if (!rayCast)
@@ -169,7 +169,7 @@ bool AepPlanner::moveSafeFrom(int parent, const FlatPose& to) const {
     return moveSafe({n.position, n.yaw}, n.time, to);
 }
 
-double AepPlanner::branchValue(double parentValue, double gain, double edge,
+double AepPlanner::branchScore(double parentValue, double gain, double edge,
                                const Eigen::Vector3d& p) const {
     (void)p;
     return parentValue + gain * std::exp(-params_.lambda * edge);
@@ -181,7 +181,7 @@ void AepPlanner::propagate(int node) {
     const double edge = (n.position - parent.position).norm();
     n.cost = parent.cost + edge;
     n.time = parent.time + moveTime({parent.position, parent.yaw}, {n.position, n.yaw});
-    n.score = branchValue(parent.score, n.gain, edge, n.position);
+    n.score = branchScore(parent.score, n.gain, edge, n.position);
     for (int child : children_[static_cast<std::size_t>(node)])
         propagate(child);
 }
@@ -216,9 +216,10 @@ int AepPlanner::extend(const PlanningContext& context, const Eigen::Vector3d& sa
     // statically valid parent gives the estimate, the turn to the view's yaw comes after.
     const TreeNode& cheapest = tree_.node(candidates[first].second);
     const YawGain view =
-        globalTree_ ? YawGain{headingOf(cheapest.position, p, cheapest.yaw), 0.0}
-                    : viewAt(context, cheapest.position, p,
-                             cheapest.time + (p - cheapest.position).norm() / motion_.speed, false);
+        globalTree_
+            ? YawGain{headingOf(cheapest.position, p, cheapest.yaw), 0.0}
+            : gainOnArrival(context, cheapest.position, p,
+                            cheapest.time + (p - cheapest.position).norm() / motion_.speed, false);
     int parent = -1;
     for (std::size_t k = first; k < candidates.size() && parent < 0; ++k) {
         const int i = candidates[k].second;
@@ -257,7 +258,7 @@ void AepPlanner::reinsertPreviousBranch(const PlanningContext& context) {
             break;
         const TreeNode& from = tree_.node(parent);
         const double arrival = from.time + (pose.position - from.position).norm() / motion_.speed;
-        const YawGain view = viewAt(context, from.position, pose.position, arrival, true);
+        const YawGain view = gainOnArrival(context, from.position, pose.position, arrival, true);
         if (!moveSafeFrom(parent, {pose.position, view.yaw}))
             break;
         parent = addNode(parent, pose.position, view);

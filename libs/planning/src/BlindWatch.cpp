@@ -6,7 +6,7 @@
 
 namespace daep::planning {
 
-BlindWatch::BlindWatch(const FrequencyMap& layout, const BlindWatchParams& params)
+BlindWatch::BlindWatch(const DynamicFrequencyMap& layout, const BlindWatchParams& params)
     : params_(params),
       grid_(layout.grid()),
       lastSeen_(grid_.size(), -std::numeric_limits<double>::infinity()) {}
@@ -30,8 +30,8 @@ double BlindWatch::lastSeen(const Eigen::Vector2d& xy) const {
                  : lastSeen_[static_cast<std::size_t>(i)];
 }
 
-BlindThreat BlindWatch::worstThreat(const FrequencyMap& dfm, const Eigen::Vector2d& p, double now,
-                                    double until, double keepOut) const {
+BlindThreat BlindWatch::worstThreat(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& p,
+                                    double now, double until, double keepOut) const {
     BlindThreat worst;
     worst.excess = -std::numeric_limits<double>::infinity();
     const double reachMax = keepOut + params_.walkSpeed * (until - now + params_.maxAge);

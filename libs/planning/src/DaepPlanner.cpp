@@ -70,7 +70,7 @@ AepParams withoutGpWhenOff(const DaepParams& p) {
 
 DaepPlanner::DaepPlanner(const DaepParams& params, const GainParams& gain, std::uint64_t seed)
     : AepPlanner(withoutGpWhenOff(params), gain, seed), params_(params) {
-    gainEvaluator().setBorderBoost(params.borderBoost, params.borderDistance);
+    gainEvaluator().setYawAngleBooster(params.borderBoost, params.borderDistance);
 }
 
 DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const {
@@ -85,7 +85,7 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
     facingTravel_ = isOn(params_.faceTravel, context.peopleFromCamera);
     obstacles_ = obstaclesOf(context);
     if (dfm_.width() == 0) {
-        dfm_ = FrequencyMap(context.explorationBox, params_.dfmCellSize);
+        dfm_ = DynamicFrequencyMap(context.explorationBox, params_.dfmCellSize);
         watch_ = BlindWatch(dfm_, params_.blind);
     }
     guardingBlind_ = isOn(params_.blindGuard, context.peopleFromCamera);
@@ -99,8 +99,8 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
             dfm_.add(f.at(context.time).mean);
 }
 
-YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3d& from,
-                            const Eigen::Vector3d& p, double arrival, bool rayCast) {
+YawGain DaepPlanner::gainOnArrival(const PlanningContext& context, const Eigen::Vector3d& from,
+                                   const Eigen::Vector3d& p, double arrival, bool rayCast) {
     const std::vector<BodyOccluder> inRange = bodiesInView(p, arrival);
     if (!inRange.empty())
         cacheStaticView(*context.map, p);
@@ -118,7 +118,7 @@ YawGain DaepPlanner::viewAt(const PlanningContext& context, const Eigen::Vector3
         return {heading, g.windowGain(columns, heading)};
     }
     if (inRange.empty())
-        return AepPlanner::viewAt(context, from, p, arrival, rayCast);
+        return AepPlanner::gainOnArrival(context, from, p, arrival, rayCast);
     ++mutableStats().rayCasts;
     return gainEvaluator().bestYaw(*context.map, p, &inRange);
 }
@@ -203,7 +203,7 @@ Plan DaepPlanner::facingTravel(const PlanningContext& context, Plan plan) const 
     return plan;
 }
 
-double DaepPlanner::branchValue(double parentValue, double gain, double edge,
+double DaepPlanner::branchScore(double parentValue, double gain, double edge,
                                 const Eigen::Vector3d& p) const {
     const double boost = params_.zeta * dfm_.value(p.head<2>());
     const double lambda = params().lambda;

@@ -94,12 +94,12 @@ double rayEntry(const BodyOccluder& body, const Eigen::Vector3d& o, const Eigen:
     return lo <= hi ? lo : kInf;
 }
 
-void GainEvaluator::setBorderBoost(double alpha, double distance) {
+void GainEvaluator::setYawAngleBooster(double alpha, double distance) {
     boostAlpha_ = alpha;
     boostDistance_ = distance;
 }
 
-double GainEvaluator::sampleWeight(const Aabb& box, const Eigen::Vector3d& s) const {
+double GainEvaluator::yawAngleBoost(const Aabb& box, const Eigen::Vector3d& s) const {
     const double toFace = std::min(
         {s.x() - box.min.x(), box.max.x() - s.x(), s.y() - box.min.y(), box.max.y() - s.y()});
     return toFace < boostDistance_ ? boostAlpha_ : 1.0;
@@ -125,7 +125,7 @@ double GainEvaluator::columnGain(const mapping::ExplorationMap& map, const Eigen
             if (state == mapping::CellState::Occupied)
                 break;
             if (state == mapping::CellState::Unknown)
-                ray += cubature_.shellWeights[k] * (boosted ? sampleWeight(box, s) : 1.0);
+                ray += cubature_.shellWeights[k] * (boosted ? yawAngleBoost(box, s) : 1.0);
         }
         gain += cubature_.ringWeights[j] * ray;
     }

@@ -103,19 +103,21 @@ protected:
     // Hooks through which DAEP makes the same trees aware of moving people.
 
     /**
-     * The view at p for a drone arriving at `arrival` from `from` (AEP: the static gain at the
-     * best yaw, from the cache's GP where it is confident unless `rayCast`).
+     * The gain at p for a drone arriving at `arrival` from `from` (AEP: the static gain at the
+     * best yaw, from the cache's GP where it is confident unless `rayCast`; DAEP: the dynamic
+     * information gain d(p, t)).
      */
-    virtual YawGain viewAt(const PlanningContext& context, const Eigen::Vector3d& from,
-                           const Eigen::Vector3d& p, double arrival, bool rayCast);
+    virtual YawGain gainOnArrival(const PlanningContext& context, const Eigen::Vector3d& from,
+                                  const Eigen::Vector3d& p, double arrival, bool rayCast);
     /** Whether turning then flying from `from` at `start` to `to` is safe (AEP: always). */
     virtual bool moveSafe(const FlatPose& from, double start, const FlatPose& to) const;
     /** moveSafe from tree node `parent` at its arrival time. */
     bool moveSafeFrom(int parent, const FlatPose& to) const;
     /** Time to get from pose a to pose b (AEP: turn to b's yaw, then fly). */
     virtual double moveTime(const FlatPose& a, const FlatPose& b) const;
-    /** A node's value from its parent's: AEP adds gain * exp(-lambda * edge). */
-    virtual double branchValue(double parentValue, double gain, double edge,
+    /** A node's score from its parent's: AEP adds gain * exp(-lambda * edge); DAEP's is the
+     * dynamic score s(p, t). */
+    virtual double branchScore(double parentValue, double gain, double edge,
                                const Eigen::Vector3d& p) const;
     /**
      * Asked when the global tree found no way to any frontier: whether people alone are in

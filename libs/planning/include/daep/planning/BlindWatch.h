@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "daep/common/Types.h"
-#include "daep/planning/FrequencyMap.h"
+#include "daep/planning/DynamicFrequencyMap.h"
 
 namespace daep::planning {
 
@@ -35,7 +35,7 @@ struct BlindThreat {
 class BlindWatch {
 public:
     BlindWatch() = default;
-    explicit BlindWatch(const FrequencyMap& layout, const BlindWatchParams& params);
+    explicit BlindWatch(const DynamicFrequencyMap& layout, const BlindWatchParams& params);
 
     /** The camera at `camera` with horizontal field of view hfov (rad) looks at time t. */
     void see(const FlatPose& camera, double hfov, double t);
@@ -44,7 +44,7 @@ public:
      * `keepOut` m apart. Cells seen within the last `freshness` s are no threat: a person
      * there would be tracked.
      */
-    BlindThreat worstThreat(const FrequencyMap& dfm, const Eigen::Vector2d& p, double now,
+    BlindThreat worstThreat(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& p, double now,
                             double until, double keepOut) const;
     double lastSeen(const Eigen::Vector2d& xy) const;
     const BlindWatchParams& params() const { return params_; }

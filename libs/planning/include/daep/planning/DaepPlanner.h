@@ -6,8 +6,8 @@
 
 #include "daep/planning/AepPlanner.h"
 #include "daep/planning/BlindWatch.h"
+#include "daep/planning/DynamicFrequencyMap.h"
 #include "daep/planning/DynamicObstacles.h"
-#include "daep/planning/FrequencyMap.h"
 
 namespace daep::planning {
 
@@ -92,7 +92,7 @@ public:
                     std::size_t nextWaypoint) override;
 
     const DaepParams& daepParams() const { return params_; }
-    const FrequencyMap& frequencyMap() const { return dfm_; }
+    const DynamicFrequencyMap& frequencyMap() const { return dfm_; }
     const DynamicObstacles& obstacles() const { return obstacles_; }
 
     /**
@@ -127,11 +127,11 @@ public:
                                          std::size_t fromWaypoint) const;
 
 protected:
-    YawGain viewAt(const PlanningContext& context, const Eigen::Vector3d& from,
-                   const Eigen::Vector3d& p, double arrival, bool rayCast) override;
+    YawGain gainOnArrival(const PlanningContext& context, const Eigen::Vector3d& from,
+                          const Eigen::Vector3d& p, double arrival, bool rayCast) override;
     bool moveSafe(const FlatPose& from, double start, const FlatPose& to) const override;
     double moveTime(const FlatPose& a, const FlatPose& b) const override;
-    double branchValue(double parentValue, double gain, double edge,
+    double branchScore(double parentValue, double gain, double edge,
                        const Eigen::Vector3d& p) const override;
     /**
      * Whether a global tree that ignores the people reaches a frontier (dynamic frontiers), or
@@ -180,7 +180,7 @@ private:
     BlindWatch watch_;
     int looks_ = 0;  ///< blind looks in a row
     DynamicObstacles obstacles_;
-    FrequencyMap dfm_;
+    DynamicFrequencyMap dfm_;
     double lastObservation_ = -1e300;
     bool ignoringPeople_ = false;  ///< moves are checked against static geometry only
 };

@@ -90,10 +90,11 @@ public:
                                 const std::vector<BodyOccluder>* occluders = nullptr) const;
 
     /**
-     * DAEP's border boost: unknown samples within `distance` of an x or y face of the
-     * exploration box count `alpha` times (alpha = 1: off, the default).
+     * DAEP's yaw angle booster (the paper's name; it boosts by distance to the box's border):
+     * unknown samples within `distance` of an x or y face of the exploration box count `alpha`
+     * times (alpha = 1: off, the default).
      */
-    void setBorderBoost(double alpha, double distance);
+    void setYawAngleBooster(double alpha, double distance);
 
     /** Gain seen at heading `yaw`; evaluates only the columns inside the field of view. */
     double gainAtYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
@@ -117,7 +118,7 @@ public:
 private:
     double columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
                       const std::vector<BodyOccluder>* occluders = nullptr) const;
-    double sampleWeight(const Aabb& box, const Eigen::Vector3d& s) const;
+    double yawAngleBoost(const Aabb& box, const Eigen::Vector3d& s) const;
     template <class ColumnFn>
     double window(double yaw, const ColumnFn& columnGainOf) const;
 

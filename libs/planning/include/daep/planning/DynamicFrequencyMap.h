@@ -29,10 +29,10 @@ struct XyGrid {
  * where people have been observed. value() is the count of a cell over the largest count,
  * in [0, 1] (0 everywhere before the first observation); outside the grid it is 0.
  */
-class FrequencyMap {
+class DynamicFrequencyMap {
 public:
-    FrequencyMap() = default;
-    FrequencyMap(const Aabb& box, double cellSize);
+    DynamicFrequencyMap() = default;
+    DynamicFrequencyMap(const Aabb& box, double cellSize);
 
     /** Counts one observation of a person standing at xy (ignored outside the grid). */
     void add(const Eigen::Vector2d& xy);

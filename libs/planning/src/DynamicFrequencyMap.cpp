@@ -1,4 +1,4 @@
-#include "daep/planning/FrequencyMap.h"
+#include "daep/planning/DynamicFrequencyMap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@ namespace daep::planning {
 
 XyGrid::XyGrid(const Aabb& box, double cellSize) : origin(box.min.head<2>()), cellSize(cellSize) {
     if (!(cellSize > 0.0))
-        throw std::invalid_argument("FrequencyMap: cell size must be > 0");
+        throw std::invalid_argument("DynamicFrequencyMap: cell size must be > 0");
     nx = std::max(1, static_cast<int>(std::ceil(box.size().x() / cellSize - 1e-9)));
     ny = std::max(1, static_cast<int>(std::ceil(box.size().y() / cellSize - 1e-9)));
 }
@@ -26,10 +26,10 @@ Eigen::Vector2d XyGrid::center(int ix, int iy) const {
     return origin + cellSize * Eigen::Vector2d(ix + 0.5, iy + 0.5);
 }
 
-FrequencyMap::FrequencyMap(const Aabb& box, double cellSize)
+DynamicFrequencyMap::DynamicFrequencyMap(const Aabb& box, double cellSize)
     : grid_(box, cellSize), counts_(grid_.size(), 0) {}
 
-void FrequencyMap::add(const Eigen::Vector2d& xy) {
+void DynamicFrequencyMap::add(const Eigen::Vector2d& xy) {
     const int i = grid_.index(xy);
     if (i < 0)
         return;
@@ -37,7 +37,7 @@ void FrequencyMap::add(const Eigen::Vector2d& xy) {
     maxCount_ = std::max(maxCount_, ++c);
 }
 
-double FrequencyMap::value(const Eigen::Vector2d& xy) const {
+double DynamicFrequencyMap::value(const Eigen::Vector2d& xy) const {
     const int i = grid_.index(xy);
     if (i < 0 || maxCount_ == 0)
         return 0.0;
