@@ -286,5 +286,44 @@ TEST_F(RandomMap, CastRayStopsAtEntryOfFirstOccupiedCell) {
     EXPECT_GT(hits, 20);
 }
 
+TEST_F(FreeBlockMap, FrontierViewpointsLieInTheBlockNearItsUnknownSurroundings) {
+    const auto anywhere = [](const Eigen::Vector3d&) { return true; };
+    const Eigen::Vector3d from(2.0, 1.0, 0.5);
+    const std::vector<Eigen::Vector3d> views = map_.frontierViewpoints(from, anywhere, 0, 0.5, 8);
+    ASSERT_EQ(views.size(), 8u);
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        EXPECT_TRUE(map_.isFree(views[i])) << views[i].transpose();
+        // Frontier cells themselves (no step back): on the block's outer layer.
+        const Eigen::Vector3d& v = views[i];
+        const bool outer = v.x() < kRes || v.x() > 4 - kRes || v.y() < kRes || v.y() > 2 - kRes ||
+                           v.z() < kRes || v.z() > 1 - kRes;
+        EXPECT_TRUE(outer) << v.transpose();
+        for (std::size_t j = 0; j < i; ++j)
+            EXPECT_GE((views[i] - views[j]).norm(), 0.5);
+    }
+    // Nearest first: the first one is on the face nearest the start, 0.4 m below it.
+    EXPECT_NEAR(views.front().z(), 0.1, 1e-9);
+}
+
+TEST_F(FreeBlockMap, AFrontierViewpointStepsBackToWhereItIsUsable) {
+    // Usable: 0.5 m inside the block sideways, the layer of cells at z = 0.7.
+    const auto inside = [](const Eigen::Vector3d& p) {
+        return p.x() > 0.5 && p.x() < 3.5 && p.y() > 0.5 && p.y() < 1.5 && p.z() > 0.6 &&
+               p.z() < 0.8;
+    };
+    const Eigen::Vector3d from(2.0, 1.0, 0.7);
+    EXPECT_TRUE(map_.frontierViewpoints(from, inside, 0, 0.5, 8).empty());
+    const std::vector<Eigen::Vector3d> views = map_.frontierViewpoints(from, inside, 5, 0.5, 8);
+    ASSERT_FALSE(views.empty());
+    for (const Eigen::Vector3d& v : views)
+        EXPECT_TRUE(inside(v)) << v.transpose();
+}
+
+TEST_F(FreeBlockMap, NoFrontierViewpointFromWhereNoFreeCellLeads) {
+    const auto anywhere = [](const Eigen::Vector3d&) { return true; };
+    EXPECT_TRUE(map_.frontierViewpoints({-0.5, -0.5, -0.5}, anywhere, 5, 0.5, 8).empty());
+    EXPECT_TRUE(map_.frontierViewpoints({40.0, 0.5, 0.5}, anywhere, 5, 0.5, 8).empty());
+}
+
 }  // namespace
 }  // namespace daep::mapping

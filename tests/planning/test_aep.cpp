@@ -268,6 +268,40 @@ AepPlanner plannerThatSawTheFarEnd(const std::string& counter) {
     return planner;
 }
 
+/** An AEP planner with map_frontiers set, and a global tree too small to survey far. */
+AepPlanner plannerWithSmallGlobalTree(const std::string& mapFrontiers) {
+    std::string text = test::editKey(test::defaultsText(), "aep", "map_frontiers", &mapFrontiers);
+    for (const char* key : {"global_min_nodes", "global_max_nodes"}) {
+        const std::string two = "2";
+        text = test::editKey(text, "aep", key, &two);
+    }
+    const auto cfg = test::configFromText(text);
+    return AepPlanner(AepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 3);
+}
+
+TEST(AepPlanner, WithMapFrontiersItDoesNotFinishWhileTheMapHasAFrontierNoSampleFound) {
+    // Known free up to x = 30 and nothing cached: no local sample sees past x = 17, and a
+    // two-node global tree surveys nothing far away.
+    auto map = westKnown(40.0, 30.0);
+    const PlanningContext ctx = contextFor(*map, {2.0, 2.0, 1.0});
+    AepPlanner trusting = plannerWithSmallGlobalTree("false");
+    const Plan ended = trusting.plan(ctx);
+    EXPECT_EQ(ended.status, Plan::Status::Finished) << ended.reason;
+    EXPECT_NE(ended.reason.find("no frontiers left"), std::string::npos) << ended.reason;
+
+    AepPlanner looking = plannerWithSmallGlobalTree("true");
+    const Plan plan = looking.plan(ctx);
+    EXPECT_NE(plan.status, Plan::Status::Finished) << plan.reason;
+    ASSERT_GT(looking.cache().size(), 0u);
+    for (int id : looking.cache().liveIds())  // viewpoints by the unknown end, with clearance
+        EXPECT_GT(looking.cache().entry(id).position.x(), 28.5);
+
+    // Everything known: then it finishes all the same.
+    auto seen = westKnown(40.0, 40.5);
+    const Plan done = plannerWithSmallGlobalTree("true").plan(contextFor(*seen, {2.0, 2.0, 1.0}));
+    EXPECT_EQ(done.status, Plan::Status::Finished) << done.reason;
+}
+
 TEST(AepPlanner, AsTheReferenceBaselineItKeepsTryingWhileAFrontierIsLeft) {
     // The reference AEP's loop ends only when no frontier is left: back at x = 2 behind the
     // imprint, every global plan fails, and the drone hovers global_retry_wait_s and retries.

@@ -286,7 +286,7 @@ TEST(DaepDynamicFrontiers, PeopleBlockingTheWayToTheUnknownMakeItWaitNotFinish) 
     const Plan free = planner.plan(ctx);
     ASSERT_EQ(free.status, Plan::Status::Path) << free.reason;
     ASSERT_FALSE(free.waypoints.empty()) << free.reason;
-    EXPECT_GT(free.waypoints.back().pose.position.x(), 2.5) << free.reason;
+    EXPECT_GT(free.waypoints.back().pose.position.x(), 2.2) << free.reason;  // east, onwards
 }
 
 TEST(DaepDynamicFrontiers, FinishesOnceTheBlockedFrontierIsGone) {

@@ -56,6 +56,7 @@ AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
     p.goalRadius = requirePositive(r, "goal_radius");
     p.globalPlannerCounter = requireIntAtLeast(r, "global_planner_counter", 0);
     p.globalRetryWait = requireNonNegative(r, "global_retry_wait_s");
+    p.mapFrontiers = r.requireBool("map_frontiers");
     const ConfigReader planning(config, "planning");
     p.robotRadius = requireNonNegative(planning, "robot_radius");
     p.crossUnknown =
@@ -341,6 +342,28 @@ Plan AepPlanner::planAtDeadline(const PlanningContext& context) {
     return plan;
 }
 
+int AepPlanner::cacheMapFrontiers(const PlanningContext& context) {
+    // A viewpoint needs the drone's clearance in the path space, up to 1 m back from the
+    // frontier; 1 m apart, and at most kMaxViews ray casts.
+    constexpr int kMaxBack = 5;
+    constexpr double kSpacing = 1.0;
+    constexpr std::size_t kMaxViews = 40;
+    const auto usable = [&](const Eigen::Vector3d& p) {
+        return samplingBox_.contains(p) && moveInPathSpace(context, p, p, false);
+    };
+    int added = 0;
+    for (const Eigen::Vector3d& p : context.map->frontierViewpoints(
+             context.pose.position, usable, kMaxBack, kSpacing, kMaxViews)) {
+        ++stats_.rayCasts;
+        const YawGain view = gain_.bestYaw(*context.map, p);
+        if (view.gain > params_.cacheThreshold) {
+            cache_.insert(p, view.yaw, view.gain);
+            ++added;
+        }
+    }
+    return added;
+}
+
 bool AepPlanner::verifyFrontier(const mapping::ExplorationMap& map, int id) {
     ++stats_.rayCasts;
     const YawGain view = gain_.bestYaw(map, cache_.entry(id).position);
@@ -400,6 +423,8 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
     // The local planner just judged the drone's surroundings: frontiers there are done.
     for (int id : cache_.near(context.pose.position, params_.goalRadius))
         cache_.remove(id);
+    if (params_.mapFrontiers && cache_.size() == 0)
+        cacheMapFrontiers(context);
     const std::vector<int> frontiers = cache_.liveIds();
     Plan plan;
     plan.score = localScore;

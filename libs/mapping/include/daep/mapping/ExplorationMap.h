@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -119,6 +120,18 @@ public:
      */
     double castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& unitDir,
                    double maxRange) const;
+
+    /**
+     * Viewpoints on the map's frontier, nearest first: the known free cells inside the box
+     * reachable from `from` through known free cells (face neighbours) that have an unknown
+     * face neighbour inside the box are frontier cells; for each, the first cell on its way
+     * back towards `from` (at most `maxBack` cells back) that is `usable` is its viewpoint.
+     * Viewpoints lie at least `spacing` apart; at most `maxViewpoints`. What is left to see,
+     * whatever a planner's samples found.
+     */
+    std::vector<Eigen::Vector3d> frontierViewpoints(
+        const Eigen::Vector3d& from, const std::function<bool(const Eigen::Vector3d&)>& usable,
+        int maxBack, double spacing, std::size_t maxViewpoints) const;
 
     /** Known (free or occupied) cells whose centre lies inside the exploration box. */
     std::size_t knownCellsInBox() const { return knownInBox_; }

@@ -38,6 +38,12 @@ struct AepParams {
     int globalPlannerCounter = 25;
     /** After a failed global plan that does not finish the mission, hover this long (s). */
     double globalRetryWait = 0.0;
+    /**
+     * When no frontier is cached, look for viewpoints on the map's own frontier before saying
+     * "finished" (the cache holds only what the trees' samples saw; a region no tree reached
+     * can hold most of what is left). Off for the reference AEP baseline.
+     */
+    bool mapFrontiers = false;
     double robotRadius = 0.3;
     /**
      * [planning] path_space = not_occupied: nodes and moves may lie in unknown space (only
@@ -161,6 +167,11 @@ private:
      */
     Plan planAtDeadline(const PlanningContext& context);
     Plan globalPlan(const PlanningContext& context, double localScore);
+    /**
+     * Caches the viewpoints on the map's reachable frontier whose ray-cast gain passes the
+     * cache threshold (see AepParams::mapFrontiers); returns how many.
+     */
+    int cacheMapFrontiers(const PlanningContext& context);
     /** Re-casts a cached viewpoint; drops it (false) when its gain fell to the threshold. */
     bool verifyFrontier(const mapping::ExplorationMap& map, int id);
     /** Returns whether a node came within goal_radius of a live frontier. */
