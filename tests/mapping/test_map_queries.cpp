@@ -289,11 +289,11 @@ TEST_F(RandomMap, CastRayStopsAtEntryOfFirstOccupiedCell) {
 TEST_F(FreeBlockMap, FrontierViewpointsLieInTheBlockNearItsUnknownSurroundings) {
     const auto anywhere = [](const Eigen::Vector3d&) { return true; };
     const Eigen::Vector3d from(2.0, 1.0, 0.5);
-    const std::vector<Eigen::Vector3d> views = map_.frontierViewpoints(from, anywhere, 0, 0.5, 8);
+    const std::vector<Eigen::Vector3d> views = map_.frontierViewpoints(from, anywhere, 1, 0.5, 8);
     ASSERT_EQ(views.size(), 8u);
     for (std::size_t i = 0; i < views.size(); ++i) {
         EXPECT_TRUE(map_.isFree(views[i])) << views[i].transpose();
-        // Frontier cells themselves (no step back): on the block's outer layer.
+        // An unknown cell one cell away: on the block's outer layer.
         const Eigen::Vector3d& v = views[i];
         const bool outer = v.x() < kRes || v.x() > 4 - kRes || v.y() < kRes || v.y() > 2 - kRes ||
                            v.z() < kRes || v.z() > 1 - kRes;
@@ -305,15 +305,16 @@ TEST_F(FreeBlockMap, FrontierViewpointsLieInTheBlockNearItsUnknownSurroundings) 
     EXPECT_NEAR(views.front().z(), 0.1, 1e-9);
 }
 
-TEST_F(FreeBlockMap, AFrontierViewpointStepsBackToWhereItIsUsable) {
+TEST_F(FreeBlockMap, FrontierViewpointsAreWhereTheDroneIsUsableAndSeesTheUnknownWithinReach) {
     // Usable: 0.5 m inside the block sideways, the layer of cells at z = 0.7.
     const auto inside = [](const Eigen::Vector3d& p) {
         return p.x() > 0.5 && p.x() < 3.5 && p.y() > 0.5 && p.y() < 1.5 && p.z() > 0.6 &&
                p.z() < 0.8;
     };
     const Eigen::Vector3d from(2.0, 1.0, 0.7);
-    EXPECT_TRUE(map_.frontierViewpoints(from, inside, 0, 0.5, 8).empty());
-    const std::vector<Eigen::Vector3d> views = map_.frontierViewpoints(from, inside, 5, 0.5, 8);
+    // The unknown above the block is two cells up from that layer.
+    EXPECT_TRUE(map_.frontierViewpoints(from, inside, 1, 0.5, 8).empty());
+    const std::vector<Eigen::Vector3d> views = map_.frontierViewpoints(from, inside, 2, 0.5, 8);
     ASSERT_FALSE(views.empty());
     for (const Eigen::Vector3d& v : views)
         EXPECT_TRUE(inside(v)) << v.transpose();

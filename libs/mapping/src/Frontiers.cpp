@@ -5,15 +5,10 @@
 #include "MapImpl.h"
 
 namespace daep::mapping {
-namespace {
-
-constexpr std::int64_t kNone = -1;
-
-}  // namespace
 
 std::vector<Eigen::Vector3d> ExplorationMap::frontierViewpoints(
     const Eigen::Vector3d& from, const std::function<bool(const Eigen::Vector3d&)>& usable,
-    int maxBack, double spacing, std::size_t maxViewpoints) const {
+    int reach, double spacing, std::size_t maxViewpoints) const {
     const Impl& m = *impl_;
     std::vector<Eigen::Vector3d> viewpoints;
     const std::int64_t start = m.gridIndex(from);
@@ -43,38 +38,48 @@ std::vector<Eigen::Vector3d> ExplorationMap::frontierViewpoints(
                 f(i + stride[a]);
         }
     };
-    std::vector<std::int64_t> parent(m.cells.size(), kNone - 1);  // kNone - 1: not reached
+    // Whether an unknown cell inside the box lies within `reach` cells of i along an axis,
+    // with free cells between: the camera at i sees into the unknown.
+    const auto seesUnknown = [&](std::int64_t i) {
+        for (std::size_t a = 0; a < 3; ++a)
+            for (const int dir : {-1, 1}) {
+                std::int64_t c = i / stride[a] % dims[a], j = i;
+                for (int step = 1; step <= reach; ++step) {
+                    c += dir;
+                    if (c < 0 || c >= dims[a])
+                        break;
+                    j += dir * stride[a];
+                    const CellState s = stateOf(j);
+                    if (s == CellState::Unknown && inBox(j))
+                        return true;
+                    if (s != CellState::Free)
+                        break;
+                }
+            }
+        return false;
+    };
+    std::vector<bool> reached(m.cells.size(), false);
     std::queue<std::int64_t> open;
-    parent[std::size_t(start)] = kNone;
+    reached[std::size_t(start)] = true;
     open.push(start);
     while (!open.empty() && viewpoints.size() < maxViewpoints) {
         const std::int64_t i = open.front();
         open.pop();
-        bool frontier = false;
         forNeighbours(i, [&](std::int64_t j) {
-            if (!inBox(j))
+            if (reached[std::size_t(j)] || !inBox(j) || stateOf(j) != CellState::Free)
                 return;
-            const CellState s = stateOf(j);
-            frontier = frontier || (s == CellState::Unknown && i != start);
-            if (s == CellState::Free && parent[std::size_t(j)] == kNone - 1) {
-                parent[std::size_t(j)] = i;
+            reached[std::size_t(j)] = true;
+            if (usable(centre(j)))
                 open.push(j);
-            }
         });
-        if (!frontier)
+        if (i == start || !seesUnknown(i))
             continue;
-        std::int64_t v = i;
-        for (int back = 0; back <= maxBack && v != kNone; ++back, v = parent[std::size_t(v)]) {
-            const Eigen::Vector3d p = centre(v);
-            if (!usable(p))
-                continue;
-            bool crowded = false;
-            for (const Eigen::Vector3d& q : viewpoints)
-                crowded = crowded || (q - p).norm() < spacing;
-            if (!crowded)
-                viewpoints.push_back(p);
-            break;
-        }
+        const Eigen::Vector3d p = centre(i);
+        bool crowded = false;
+        for (const Eigen::Vector3d& q : viewpoints)
+            crowded = crowded || (q - p).norm() < spacing;
+        if (!crowded)
+            viewpoints.push_back(p);
     }
     return viewpoints;
 }

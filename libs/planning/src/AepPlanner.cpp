@@ -343,17 +343,17 @@ Plan AepPlanner::planAtDeadline(const PlanningContext& context) {
 }
 
 int AepPlanner::cacheMapFrontiers(const PlanningContext& context) {
-    // A viewpoint needs the drone's clearance in the path space, up to 1 m back from the
-    // frontier; 1 m apart, and at most kMaxViews ray casts.
-    constexpr int kMaxBack = 5;
+    // Viewpoints where the drone has its clearance in the path space and reaches them so,
+    // within 1 m of the unknown; 1 m apart, and at most kMaxViews ray casts.
+    constexpr int kReach = 5;
     constexpr double kSpacing = 1.0;
     constexpr std::size_t kMaxViews = 40;
     const auto usable = [&](const Eigen::Vector3d& p) {
         return samplingBox_.contains(p) && moveInPathSpace(context, p, p, false);
     };
     int added = 0;
-    for (const Eigen::Vector3d& p : context.map->frontierViewpoints(
-             context.pose.position, usable, kMaxBack, kSpacing, kMaxViews)) {
+    for (const Eigen::Vector3d& p : context.map->frontierViewpoints(context.pose.position, usable,
+                                                                    kReach, kSpacing, kMaxViews)) {
         ++stats_.rayCasts;
         const YawGain view = gain_.bestYaw(*context.map, p);
         if (view.gain > params_.cacheThreshold) {

@@ -123,15 +123,14 @@ public:
 
     /**
      * Viewpoints on the map's frontier, nearest first: the known free cells inside the box
-     * reachable from `from` through known free cells (face neighbours) that have an unknown
-     * face neighbour inside the box are frontier cells; for each, the first cell on its way
-     * back towards `from` (at most `maxBack` cells back) that is `usable` is its viewpoint.
-     * Viewpoints lie at least `spacing` apart; at most `maxViewpoints`. What is left to see,
-     * whatever a planner's samples found.
+     * that the drone reaches from `from` through cells where it is `usable` (face neighbours;
+     * its clearance, say), and from which an unknown cell inside the box lies within `reach`
+     * cells along an axis with free cells between. At least `spacing` apart; at most
+     * `maxViewpoints`. What is left to see, whatever a planner's samples found.
      */
     std::vector<Eigen::Vector3d> frontierViewpoints(
         const Eigen::Vector3d& from, const std::function<bool(const Eigen::Vector3d&)>& usable,
-        int maxBack, double spacing, std::size_t maxViewpoints) const;
+        int reach, double spacing, std::size_t maxViewpoints) const;
 
     /** Known (free or occupied) cells whose centre lies inside the exploration box. */
     std::size_t knownCellsInBox() const { return knownInBox_; }
