@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "daep/common/Config.h"
+#include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 #include "daep/common/Types.h"
 
@@ -68,6 +69,21 @@ TEST(ConfigReader, IntegersBeyondAnIntAreErrors) {
     EXPECT_EQ(errorOf([&] { r.requireInt("start"); }),
               "test.ini: [experiment] start: '4294967296' is out of range");
     EXPECT_EQ(r.requireInt("seed"), -2147483648LL);
+}
+
+TEST(ConfigChecks, RangeErrorsNameSourceKeyValueAndRange) {
+    const auto cfg = makeConfig();
+    const ConfigReader r(cfg, "cam", "test.ini");
+    EXPECT_EQ(daep::requireIntBetween(r, "width", 16, 8192), 640);
+    EXPECT_EQ(errorOf([&] { daep::requireIntBetween(r, "width", 16, 600); }),
+              "test.ini: [cam] width: 640 must be in [16, 600]");
+    EXPECT_DOUBLE_EQ(daep::requireBetween(r, "fov_deg", 0.0, 180.0), 90.0);
+    EXPECT_EQ(errorOf([&] { daep::requireBetween(r, "noise", 0.5, 1.0); }),
+              "test.ini: [cam] noise: 0.5 must be in (0.5, 1)");
+    mrpt::config::CConfigFileMemory nan;
+    nan.write("cam", "sigma", "nan");
+    const ConfigReader n(nan, "cam", "test.ini");
+    EXPECT_FALSE(errorOf([&] { daep::requireNonNegative(n, "sigma"); }).empty());
 }
 
 TEST(Types, WrapAngleStaysInHalfOpenInterval) {

@@ -281,15 +281,11 @@ MapParams MapParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
     MapParams p;
     p.resolution = requirePositive(r, "resolution");
     p.maxRange = requirePositive(r, "max_range");
-    p.probHit = r.requireDouble("prob_hit");
-    p.probMiss = r.requireDouble("prob_miss");
+    p.probHit = requireBetween(r, "prob_hit", 0.5, 1.0);
+    p.probMiss = requireBetween(r, "prob_miss", 0.0, 0.5);
     p.clampMin = r.requireDouble("clamp_min");
     p.clampMax = r.requireDouble("clamp_max");
     p.noReturnIsFree = r.requireBool("no_return_free");
-    if (p.probHit <= 0.5 || p.probHit >= 1)
-        throw InputError("[map] prob_hit: must be in (0.5, 1)");
-    if (p.probMiss <= 0 || p.probMiss >= 0.5)
-        throw InputError("[map] prob_miss: must be in (0, 0.5)");
     return p;
 }
 

@@ -421,7 +421,7 @@ DetectorParams DetectorParams::fromConfig(const mrpt::config::CConfigFileBase& c
     p.floorHeight = r.requireDouble("floor_height");
     p.ceilingHeight = r.requireDouble("ceiling_height");
     if (!(p.ceilingHeight > p.floorHeight))
-        throw InputError("[detector] ceiling_height: must be above floor_height");
+        failRange(r, "ceiling_height", p.ceilingHeight, "must be above floor_height");
     p.maxPersonTop = requirePositive(r, "max_person_top");
     p.minVerticalExtent = requireNonNegative(r, "min_vertical_extent");
     p.maxWidth = requirePositive(r, "max_width");
@@ -429,11 +429,9 @@ DetectorParams DetectorParams::fromConfig(const mrpt::config::CConfigFileBase& c
     p.minArea = requireNonNegative(r, "min_area");
     p.minEvidenceFraction = requireNonNegative(r, "min_evidence_fraction");
     if (p.minEvidenceFraction > 1)
-        throw InputError("[detector] min_evidence_fraction: must be in [0, 1]");
+        failRange(r, "min_evidence_fraction", p.minEvidenceFraction, "must be in [0, 1]");
     p.depthJump = requirePositive(r, "depth_jump");
-    p.maxGrazingAngle = r.requireAngleDeg("max_grazing_deg");
-    if (!(p.maxGrazingAngle > 0 && p.maxGrazingAngle < M_PI / 2))
-        throw InputError("[detector] max_grazing_deg: must be in (0, 90)");
+    p.maxGrazingAngle = requireBetween(r, "max_grazing_deg", 0.0, 90.0) * M_PI / 180.0;
     p.morphKernel = requireIntAtLeast(r, "morph_kernel_px", 1);
     p.surfaceMargin = requireNonNegative(r, "surface_margin");
     p.centreOffset = requireNonNegative(r, "centre_offset");

@@ -163,18 +163,12 @@ void DepthCamera::render(const world::RayCaster& scene, const FlatPose& drone, d
 CameraParams CameraParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
     const ConfigReader r(cfg, "camera");
     CameraParams p;
-    p.width = r.requireInt("width");
-    p.height = r.requireInt("height");
-    if (p.width < 2 || p.height < 2)
-        throw InputError("[camera] width/height: must be >= 2");
-    p.hfovRad = r.requireAngleDeg("hfov_deg");
-    if (p.hfovRad <= 0 || p.hfovRad >= M_PI)
-        throw InputError("[camera] hfov_deg: must be in (0, 180)");
+    p.width = requireIntAtLeast(r, "width", 2);
+    p.height = requireIntAtLeast(r, "height", 2);
+    p.hfovRad = requireBetween(r, "hfov_deg", 0.0, 180.0) * M_PI / 180.0;
     p.maxRange = requirePositive(r, "max_range");
     p.rateHz = requirePositive(r, "rate_hz");
-    p.noiseSigma = r.requireDouble("noise_sigma");
-    if (p.noiseSigma < 0)
-        throw InputError("[camera] noise_sigma: must be >= 0");
+    p.noiseSigma = requireNonNegative(r, "noise_sigma");
     return p;
 }
 

@@ -27,8 +27,27 @@ inline double requirePositive(const ConfigReader& r, const std::string& key) {
 
 inline double requireNonNegative(const ConfigReader& r, const std::string& key) {
     const double v = r.requireDouble(key);
-    if (v < 0.0)
+    if (!(v >= 0.0))
         failRange(r, key, v, "must be >= 0");
+    return v;
+}
+
+/** A value strictly between lo and hi. */
+inline double requireBetween(const ConfigReader& r, const std::string& key, double lo, double hi) {
+    const double v = r.requireDouble(key);
+    if (!(v > lo && v < hi)) {
+        std::ostringstream os;
+        os << "must be in (" << lo << ", " << hi << ")";
+        failRange(r, key, v, os.str());
+    }
+    return v;
+}
+
+/** An integer in [lo, hi]. */
+inline int requireIntBetween(const ConfigReader& r, const std::string& key, int lo, int hi) {
+    const int v = r.requireInt(key);
+    if (v < lo || v > hi)
+        failRange(r, key, v, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return v;
 }
 
