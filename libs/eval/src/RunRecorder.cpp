@@ -29,6 +29,7 @@ std::string EndReason::text() const {
     }
     return "";
 }
+
 namespace {
 
 std::FILE* openForWriting(const std::string& path, const char* header) {

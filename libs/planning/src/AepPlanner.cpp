@@ -342,7 +342,7 @@ Plan AepPlanner::planAtDeadline(const PlanningContext& context) {
     return plan;
 }
 
-int AepPlanner::cacheMapFrontiers(const PlanningContext& context) {
+void AepPlanner::cacheMapFrontiers(const PlanningContext& context) {
     // Viewpoints where the drone has its clearance in the path space and reaches them so,
     // within 1 m of the unknown; 1 m apart, and at most kMaxViews ray casts.
     constexpr int kReach = 5;
@@ -351,17 +351,13 @@ int AepPlanner::cacheMapFrontiers(const PlanningContext& context) {
     const auto usable = [&](const Eigen::Vector3d& p) {
         return samplingBox_.contains(p) && moveInPathSpace(context, p, p, false);
     };
-    int added = 0;
     for (const Eigen::Vector3d& p : context.map->frontierViewpoints(context.pose.position, usable,
                                                                     kReach, kSpacing, kMaxViews)) {
         ++stats_.rayCasts;
         const YawGain view = gain_.bestYaw(*context.map, p);
-        if (view.gain > params_.cacheThreshold) {
+        if (view.gain > params_.cacheThreshold)
             cache_.insert(p, view.yaw, view.gain);
-            ++added;
-        }
     }
-    return added;
 }
 
 bool AepPlanner::verifyFrontier(const mapping::ExplorationMap& map, int id) {

@@ -57,8 +57,7 @@ DroneParams DroneParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
     DroneParams p;
     p.speed = requirePositive(r, "speed");
     p.yawRate = requirePositive(r, "yaw_rate_deg_s") * M_PI / 180.0;
-    p.boxSize = {requirePositive(r, "box_x"), requirePositive(r, "box_y"),
-                 requirePositive(r, "box_z")};
+    p.boxSize = requirePositiveXyz(r, "box");
     return p;
 }
 

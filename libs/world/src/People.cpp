@@ -115,8 +115,7 @@ PeopleParams PeopleParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) 
     PeopleParams p;
     p.speed = requirePositive(r, "speed");
     p.turnRate = requirePositive(r, "turn_rate_deg_s") * M_PI / 180.0;
-    p.bodySize = {requirePositive(r, "body_x"), requirePositive(r, "body_y"),
-                  requirePositive(r, "body_z")};
+    p.bodySize = requirePositiveXyz(r, "body");
     return p;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -30,6 +31,13 @@ inline double requireNonNegative(const ConfigReader& r, const std::string& key) 
     if (!(v >= 0.0))
         failRange(r, key, v, "must be >= 0");
     return v;
+}
+
+/** The positive sizes `<prefix>_x`, `<prefix>_y`, `<prefix>_z` (a box's, a body's). */
+inline Eigen::Vector3d requirePositiveXyz(const ConfigReader& r, const std::string& prefix) {
+    const double x = requirePositive(r, prefix + "_x");
+    const double y = requirePositive(r, prefix + "_y");
+    return {x, y, requirePositive(r, prefix + "_z")};
 }
 
 /** A value strictly between lo and hi. */

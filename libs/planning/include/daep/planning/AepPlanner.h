@@ -169,9 +169,9 @@ private:
     Plan globalPlan(const PlanningContext& context, double localScore);
     /**
      * Caches the viewpoints on the map's reachable frontier whose ray-cast gain passes the
-     * cache threshold (see AepParams::mapFrontiers); returns how many.
+     * cache threshold (see AepParams::mapFrontiers).
      */
-    int cacheMapFrontiers(const PlanningContext& context);
+    void cacheMapFrontiers(const PlanningContext& context);
     /** Re-casts a cached viewpoint; drops it (false) when its gain fell to the threshold. */
     bool verifyFrontier(const mapping::ExplorationMap& map, int id);
     /** Returns whether a node came within goal_radius of a live frontier. */
