@@ -257,14 +257,15 @@ std::unique_ptr<mapping::ExplorationMap> corridorClosedAtSix() {
 }
 
 /** An AEP planner that has cached the frontiers at the corridor's unknown end (x > 12). */
-AepPlanner plannerThatSawTheFarEnd(const std::string& counter) {
+std::unique_ptr<AepPlanner> plannerThatSawTheFarEnd(const std::string& counter) {
     const auto cfg = test::configFromText(
         test::editKey(test::defaultsText(), "aep", "global_planner_counter", &counter));
-    AepPlanner planner(AepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 5);
+    auto planner =
+        std::make_unique<AepPlanner>(AepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 5);
     auto open = westKnown(16.0, 12.0);
-    const Plan there = planner.plan(contextFor(*open, {9.0, 2.0, 1.0}));
+    const Plan there = planner->plan(contextFor(*open, {9.0, 2.0, 1.0}));
     EXPECT_FALSE(there.waypoints.empty()) << there.reason;
-    EXPECT_GT(planner.cache().size(), 0u);
+    EXPECT_GT(planner->cache().size(), 0u);
     return planner;
 }
 
@@ -305,7 +306,8 @@ TEST(AepPlanner, WithMapFrontiersItDoesNotFinishWhileTheMapHasAFrontierNoSampleF
 TEST(AepPlanner, AsTheReferenceBaselineItKeepsTryingWhileAFrontierIsLeft) {
     // The reference AEP's loop ends only when no frontier is left: back at x = 2 behind the
     // imprint, every global plan fails, and the drone hovers global_retry_wait_s and retries.
-    AepPlanner planner = plannerThatSawTheFarEnd("0");
+    const std::unique_ptr<AepPlanner> owned = plannerThatSawTheFarEnd("0");
+    AepPlanner& planner = *owned;
     ASSERT_EQ(planner.params().globalPlannerCounter, 0);
     ASSERT_GT(planner.params().globalRetryWait, 0.0);
     auto closed = corridorClosedAtSix();
@@ -325,7 +327,8 @@ TEST(AepPlanner, AsTheReferenceBaselineItKeepsTryingWhileAFrontierIsLeft) {
 }
 
 TEST(AepPlanner, WithACounterItFinishesAfterThatManyFailedGlobalPlans) {
-    AepPlanner planner = plannerThatSawTheFarEnd("25");
+    const std::unique_ptr<AepPlanner> owned = plannerThatSawTheFarEnd("25");
+    AepPlanner& planner = *owned;
     auto closed = corridorClosedAtSix();
     const PlanningContext ctx = contextFor(*closed, {2.0, 2.0, 1.0});
     for (int k = 1; k < 25; ++k)

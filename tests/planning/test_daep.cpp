@@ -29,6 +29,14 @@ DaepPlanner makePlanner(std::uint64_t seed, const std::string& key = "",
     return DaepPlanner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), seed);
 }
 
+/** makePlanner on the heap, for helpers that prepare a planner (planners do not move). */
+std::unique_ptr<DaepPlanner> newPlanner(std::uint64_t seed, const std::string& key = "",
+                                        const std::string& value = "") {
+    const auto cfg = test::configFromText(daepText(key, value));
+    return std::make_unique<DaepPlanner>(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg),
+                                         seed);
+}
+
 PersonForecast walker(int id, Eigen::Vector2d p, Eigen::Vector2d v, double t0) {
     PersonForecast f;
     f.id = id;
@@ -39,26 +47,19 @@ PersonForecast walker(int id, Eigen::Vector2d p, Eigen::Vector2d v, double t0) {
     return f;
 }
 
-/** Exposes the score so that the formula can be checked. */
-class ScoredDaep : public DaepPlanner {
-public:
-    using DaepPlanner::DaepPlanner;
-    double value(double parent, double gain, double edge, const Eigen::Vector3d& p) const {
-        return branchScore(parent, gain, edge, p);
-    }
-};
-
 /** A planner whose frequency map has seen one person standing at `at` for a while. */
-ScoredDaep withPersonSeenAt(const std::string& score, const mapping::ExplorationMap& map,
-                            const Eigen::Vector2d& at) {
+std::unique_ptr<DaepPlanner> withPersonSeenAt(const std::string& score,
+                                              const mapping::ExplorationMap& map,
+                                              const Eigen::Vector2d& at) {
     const auto cfg = test::configFromText(daepText("score", score));
-    ScoredDaep planner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 1);
+    auto planner = std::make_unique<DaepPlanner>(DaepParams::fromConfig(*cfg),
+                                                 GainParams::fromConfig(*cfg), 1);
     PlanningContext ctx = contextFor(map, {1, 1, 1});
     for (int k = 0; k < 10; ++k) {
         ctx.time = 12.0 + 0.25 * k;
         const std::vector<PersonForecast> people{walker(0, at, {0, 0}, ctx.time)};
         ctx.people = &people;
-        planner.keepFlying(ctx, Plan{}, 0);
+        planner->keepFlying(ctx, Plan{}, 0);
     }
     return planner;
 }
@@ -66,17 +67,18 @@ ScoredDaep withPersonSeenAt(const std::string& score, const mapping::Exploration
 struct DaepRoom : test::HalfKnownRoomMap {};
 
 TEST_F(DaepRoom, ScoreBoostsGainWhereTheFrequencyMapSawPeople) {
-    const ScoredDaep paper = withPersonSeenAt("paper", *map, {3.5, 2.5});
-    const double lambda = paper.params().lambda, zeta = paper.daepParams().zeta;
+    const auto paper = withPersonSeenAt("paper", *map, {3.5, 2.5});
+    const double lambda = paper->params().lambda, zeta = paper->daepParams().zeta;
     const Eigen::Vector3d busy(3.4, 2.6, 1.0), quiet(1.5, 0.5, 1.0);
-    EXPECT_DOUBLE_EQ(paper.frequencyMap().value(busy.head<2>()), 1.0);
-    EXPECT_DOUBLE_EQ(paper.frequencyMap().value(quiet.head<2>()), 0.0);
-    EXPECT_NEAR(paper.value(2.0, 10.0, 1.2, busy),
+    EXPECT_DOUBLE_EQ(paper->frequencyMap().value(busy.head<2>()), 1.0);
+    EXPECT_DOUBLE_EQ(paper->frequencyMap().value(quiet.head<2>()), 0.0);
+    const BranchObjective& score = *paper->parts().objective;
+    EXPECT_NEAR(score.score(2.0, 10.0, 1.2, busy),
                 2.0 + 10.0 * std::exp(-lambda * 1.2) * (1 + zeta), 1e-12);
-    EXPECT_NEAR(paper.value(2.0, 10.0, 1.2, quiet), 2.0 + 10.0 * std::exp(-lambda * 1.2), 1e-12);
+    EXPECT_NEAR(score.score(2.0, 10.0, 1.2, quiet), 2.0 + 10.0 * std::exp(-lambda * 1.2), 1e-12);
     // The reference code's variant puts the frequency into the exponent: a penalty.
-    const ScoredDaep reference = withPersonSeenAt("reference", *map, {3.5, 2.5});
-    EXPECT_NEAR(reference.value(2.0, 10.0, 1.2, busy),
+    const auto reference = withPersonSeenAt("reference", *map, {3.5, 2.5});
+    EXPECT_NEAR(reference->parts().objective->score(2.0, 10.0, 1.2, busy),
                 2.0 + 10.0 * std::exp(-lambda * 1.2 * (1 + zeta)), 1e-12);
 }
 
@@ -394,9 +396,11 @@ TEST_F(DaepRoom, FacingTravelFliesEveryLegLookingAheadThenTurnsToTheView) {
 }
 
 /** A camera-fed planner that saw a person stand behind it, at (0.5, 2.5), then lost them. */
-DaepPlanner guardedAfterAWalkerBehind(const mapping::ExplorationMap& map, const Eigen::Vector3d& at,
-                                      const std::string& guard) {
-    DaepPlanner planner = makePlanner(3, "blind_guard", guard);
+std::unique_ptr<DaepPlanner> guardedAfterAWalkerBehind(const mapping::ExplorationMap& map,
+                                                       const Eigen::Vector3d& at,
+                                                       const std::string& guard) {
+    std::unique_ptr<DaepPlanner> owned = newPlanner(3, "blind_guard", guard);
+    DaepPlanner& planner = *owned;
     PlanningContext ctx = contextFor(map, at);  // facing +x: the walker is behind
     ctx.peopleFromCamera = true;
     for (int k = 0; k < 10; ++k) {
@@ -405,11 +409,12 @@ DaepPlanner guardedAfterAWalkerBehind(const mapping::ExplorationMap& map, const 
         ctx.people = &people;
         planner.keepFlying(ctx, Plan{}, 0);
     }
-    return planner;
+    return owned;
 }
 
 TEST_F(DaepRoom, BeforeStoppingNearAWalkwayItHasNotWatchedItTurnsToLookAtIt) {
-    DaepPlanner planner = guardedAfterAWalkerBehind(*map, root, "auto");
+    const std::unique_ptr<DaepPlanner> owned = guardedAfterAWalkerBehind(*map, root, "auto");
+    DaepPlanner& planner = *owned;
     PlanningContext ctx = contextFor(*map, root);  // t = 12: the walkway unseen for 10 s
     ctx.peopleFromCamera = true;
     const std::vector<PersonForecast> nobody;
@@ -432,7 +437,8 @@ TEST_F(DaepRoom, BeforeStoppingNearAWalkwayItHasNotWatchedItTurnsToLookAtIt) {
 TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
     const std::vector<PersonForecast> nobody;
     {
-        DaepPlanner planner = guardedAfterAWalkerBehind(*map, root, "auto");
+        const std::unique_ptr<DaepPlanner> owned = guardedAfterAWalkerBehind(*map, root, "auto");
+        DaepPlanner& planner = *owned;
         PlanningContext ctx = contextFor(*map, root, std::atan2(0.5, -1.5));  // facing it now
         ctx.peopleFromCamera = true;
         ctx.people = &nobody;
@@ -443,7 +449,8 @@ TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
         EXPECT_EQ(plan.reason.rfind("look:", 0), std::string::npos) << plan.reason;
     }
     for (const char* guard : {"auto", "false"}) {
-        DaepPlanner planner = guardedAfterAWalkerBehind(*map, root, guard);
+        const std::unique_ptr<DaepPlanner> owned = guardedAfterAWalkerBehind(*map, root, guard);
+        DaepPlanner& planner = *owned;
         PlanningContext ctx = contextFor(*map, root);
         ctx.peopleFromCamera = std::string(guard) == "false";  // auto needs camera people
         ctx.people = &nobody;

@@ -69,8 +69,13 @@ AepParams withoutGpWhenOff(const DaepParams& p) {
 }  // namespace
 
 DaepPlanner::DaepPlanner(const DaepParams& params, const GainParams& gain, std::uint64_t seed)
-    : AepPlanner(withoutGpWhenOff(params), gain, seed), params_(params) {
+    : AepPlanner(withoutGpWhenOff(params), gain, seed),
+      params_(params),
+      timeAware_(pathSpace(), obstacles_, flight()),
+      dynamicScore_(params.score, params.aep.lambda, params.zeta, dfm_),
+      dynamicGain_(cachedView(), obstacles_, flight()) {
     gainEvaluator().setYawAngleBooster(params.borderBoost, params.borderDistance);
+    compose(timeAware_, dynamicScore_, dynamicGain_);
 }
 
 DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const {
@@ -82,7 +87,7 @@ DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const 
 }
 
 void DaepPlanner::observePeople(const PlanningContext& context) {
-    facingTravel_ = isOn(params_.faceTravel, context.peopleFromCamera);
+    flight().faceTravel = isOn(params_.faceTravel, context.peopleFromCamera);
     obstacles_ = obstaclesOf(context);
     if (dfm_.width() == 0) {
         dfm_ = DynamicFrequencyMap(context.explorationBox, params_.dfmCellSize);
@@ -97,119 +102,6 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
     for (const perception::PersonForecast& f : obstacles_.people())
         if (context.time - f.time <= kDfmFreshness)
             dfm_.add(f.at(context.time).mean);
-}
-
-YawGain DaepPlanner::gainOnArrival(const PlanningContext& context, const Eigen::Vector3d& from,
-                                   const Eigen::Vector3d& p, double arrival, bool rayCast) {
-    const std::vector<BodyOccluder> inRange = bodiesInView(p, arrival);
-    if (!inRange.empty())
-        cacheStaticView(*context.map, p);
-    const Eigen::Vector2d leg = (p - from).head<2>();
-    if (facingTravel_ && leg.norm() > 0.05) {
-        // Flying facing along the leg, the view at p is the one along it: no turn at the end.
-        const GainEvaluator& g = gainEvaluator();
-        const std::vector<double> columns =
-            g.columns(*context.map, p, inRange.empty() ? nullptr : &inRange);
-        ++mutableStats().rayCasts;
-        const YawGain best = g.bestYaw(columns);
-        if (inRange.empty() && best.gain > params().cacheThreshold)
-            cache().insert(p, best.yaw, best.gain);
-        const double heading = std::atan2(leg.y(), leg.x());
-        return {heading, g.windowGain(columns, heading)};
-    }
-    if (inRange.empty())
-        return AepPlanner::gainOnArrival(context, from, p, arrival, rayCast);
-    ++mutableStats().rayCasts;
-    return gainEvaluator().bestYaw(*context.map, p, &inRange);
-}
-
-std::vector<BodyOccluder> DaepPlanner::bodiesInView(const Eigen::Vector3d& p, double t) const {
-    std::vector<BodyOccluder> inRange;
-    const double range = gainEvaluator().params().range;
-    for (const BodyOccluder& b : obstacles_.bodiesAt(t))
-        if ((b.center - p.head<2>()).norm() <= range + b.radius)
-            inRange.push_back(b);
-    return inRange;
-}
-
-void DaepPlanner::cacheStaticView(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) {
-    ++mutableStats().rayCasts;
-    const YawGain view = gainEvaluator().bestYaw(map, p);
-    if (view.gain > params().cacheThreshold)
-        cache().insert(p, view.yaw, view.gain);
-}
-
-std::vector<FlatPose> DaepPlanner::movePoses(const FlatPose& a, const FlatPose& b) const {
-    const Eigen::Vector2d d = (b.position - a.position).head<2>();
-    if (!facingTravel_ || d.norm() < 0.05)
-        return {b};
-    const FlatPose along{b.position, std::atan2(d.y(), d.x())};
-    if (std::abs(wrapAngle(along.yaw - b.yaw)) < 1e-6)
-        return {b};
-    return {along, b};
-}
-
-double DaepPlanner::moveTime(const FlatPose& a, const FlatPose& b) const {
-    double time = 0.0;
-    FlatPose at = a;
-    for (const FlatPose& next : movePoses(a, b)) {
-        time += motion().travelTime(at, next);
-        at = next;
-    }
-    return time;
-}
-
-bool DaepPlanner::moveSafe(const FlatPose& from, double start, const FlatPose& to) const {
-    if (obstacles_.empty() || ignoringPeople_)
-        return true;
-    FlatPose at = from;
-    for (const FlatPose& next : movePoses(from, to)) {
-        const TimedSegment move = timedSegment(at, next, start, motion().speed, motion().yawRate);
-        if (!obstacles_.isSafe(move))
-            return false;
-        start = move.end();
-        at = next;
-    }
-    return true;
-}
-
-bool DaepPlanner::peopleBlockFrontiers(const PlanningContext& context) {
-    if (obstacles_.empty())
-        return false;
-    ignoringPeople_ = true;
-    const bool reached = globalTreeReachesFrontier(context);
-    ignoringPeople_ = false;
-    if (reached)
-        return true;
-    // No tree grows at all with someone near: the space around the drone is what the person
-    // hides from the camera, so nothing can be judged finished until they move.
-    return tree().size() <= 1 && !bodiesInView(context.pose.position, context.time).empty();
-}
-
-Plan DaepPlanner::facingTravel(const PlanningContext& context, Plan plan) const {
-    if (!facingTravel_)
-        return plan;
-    std::vector<Waypoint> expanded;
-    FlatPose at = context.pose;
-    double time = context.time;
-    for (const Waypoint& w : plan.waypoints) {
-        for (const FlatPose& pose : movePoses(at, w.pose)) {
-            time += context.motion.travelTime(at, pose);
-            expanded.push_back({pose, time});
-            at = pose;
-        }
-    }
-    plan.waypoints = std::move(expanded);
-    return plan;
-}
-
-double DaepPlanner::branchScore(double parentValue, double gain, double edge,
-                                const Eigen::Vector3d& p) const {
-    const double boost = params_.zeta * dfm_.value(p.head<2>());
-    const double lambda = params().lambda;
-    if (params_.score == DynamicScore::Reference)
-        return parentValue + gain * std::exp(-lambda * edge * (1.0 + boost));
-    return parentValue + gain * std::exp(-lambda * edge) * (1.0 + boost);
 }
 
 std::vector<TimedSegment> DaepPlanner::timedMoves(const PlanningContext& context, const Plan& plan,
@@ -244,7 +136,7 @@ Plan DaepPlanner::wait(const PlanningContext& context, const std::string& why) c
     // Waiting, the drone turns on the spot a quarter at a time: the camera sweeps around, so
     // people coming from where it was not looking are seen (and the turn is checked as a move).
     const FlatPose look{context.pose.position, wrapAngle(context.pose.yaw + M_PI / 2)};
-    if (moveSafe(context.pose, context.time, look)) {
+    if (timeAware_.timedValid(context.pose, context.time, look)) {
         plan.waypoints.push_back(
             {look, context.time + context.motion.travelTime(context.pose, look)});
         plan.reason = "wait, looking around: " + why;
@@ -279,7 +171,7 @@ void DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
     }
     const Eigen::Vector2d d = threat->cell - context.pose.position.head<2>();
     const FlatPose look{context.pose.position, std::atan2(d.y(), d.x())};
-    if (!moveSafe(context.pose, context.time, look)) {
+    if (!timeAware_.timedValid(context.pose, context.time, look)) {
         looks_ = 0;
         return;
     }
@@ -473,8 +365,7 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
     Plan plan = AepPlanner::plan(context);
     if (plan.status == Plan::Status::Finished)
         return hoverSafe ? plan : bestEscape(context);  // get clear first, then judge again
-    plan =
-        cutBeforeTrap(context, cutAtFirstUnsafe(context, facingTravel(context, std::move(plan))));
+    plan = cutBeforeTrap(context, cutAtFirstUnsafe(context, std::move(plan)));
     if (!plan.waypoints.empty()) {
         lookBeforeStop(context, plan);
         return plan;

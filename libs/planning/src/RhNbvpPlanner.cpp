@@ -27,10 +27,8 @@ RhNbvpParams RhNbvpParams::fromConfig(const mrpt::config::CConfigFileBase& confi
 RhNbvpPlanner::RhNbvpPlanner(const RhNbvpParams& params, const GainParams& gain, std::uint64_t seed)
     : params_(params), gain_(gain), rng_(seed) {}
 
-bool RhNbvpPlanner::edgeValid(const PlanningContext& context, int parent,
-                              const Eigen::Vector3d& to) const {
-    return segmentFlyable(*context.map, tree_.node(parent).position, to, params_.robotRadius,
-                          parent == 0 && !rootFree_);
+bool RhNbvpPlanner::edgeValid(int parent, const Eigen::Vector3d& to) const {
+    return pathSpace_.staticValid(tree_.node(parent).position, to, parent == 0 && !rootFree_);
 }
 
 int RhNbvpPlanner::addNode(const PlanningContext& context, int parent,
@@ -47,7 +45,7 @@ int RhNbvpPlanner::addNode(const PlanningContext& context, int parent,
 void RhNbvpPlanner::reinsertPreviousBranch(const PlanningContext& context) {
     int parent = 0;
     for (const FlatPose& pose : previousBranch_) {
-        if (!samplingBox_.contains(pose.position) || !edgeValid(context, parent, pose.position)) {
+        if (!samplingBox_.contains(pose.position) || !edgeValid(parent, pose.position)) {
             break;
         }
         parent = addNode(context, parent, pose.position, pose.yaw);
@@ -68,7 +66,7 @@ void RhNbvpPlanner::grow(const PlanningContext& context) {
         const int parent = tree_.nearest(sample);
         const Eigen::Vector3d p =
             steer(tree_.node(parent).position, sample, params_.extensionRange);
-        if (!samplingBox_.contains(p) || !edgeValid(context, parent, p))
+        if (!samplingBox_.contains(p) || !edgeValid(parent, p))
             continue;
         addNode(context, parent, p, yaw);
     }
@@ -78,6 +76,7 @@ Plan RhNbvpPlanner::plan(const PlanningContext& context) {
     if (context.map == nullptr)
         throw std::invalid_argument("RhNbvpPlanner::plan: no map");
     tree_.reset(context.pose);
+    pathSpace_.bind(*context.map, params_.robotRadius, false);
     best_ = -1;
     samples_ = 0;
     samplingBox_ = shrink(context.explorationBox, params_.robotRadius);

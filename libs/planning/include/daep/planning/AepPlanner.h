@@ -5,11 +5,13 @@
 #include <string>
 #include <vector>
 
+#include "daep/planning/ExplorationTree.h"
+#include "daep/planning/FlightModel.h"
 #include "daep/planning/GainCache.h"
 #include "daep/planning/GainEvaluator.h"
 #include "daep/planning/GaussianProcess.h"
 #include "daep/planning/Planner.h"
-#include "daep/planning/Tree.h"
+#include "daep/planning/TreeParts.h"
 
 namespace daep::planning {
 
@@ -58,16 +60,6 @@ struct AepParams {
                                 const std::string& section = "aep");
 };
 
-/** Counters of the last plan() call, for tests and benchmarks. */
-struct AepStats {
-    int rayCasts = 0;
-    int gpPredictions = 0;
-    int cacheRefreshed = 0;
-    int cacheDropped = 0;
-    int samples = 0;
-    bool global = false;
-};
-
 /**
  * Autonomous Exploration Planner (Selin et al. 2019).
  *
@@ -83,21 +75,29 @@ struct AepStats {
  * global_min_nodes) gives the cheapest path to one, flown in full and ending at the frontier's
  * best yaw. The global tree's nodes are also gain-evaluated, so viewpoints that no local tree
  * reached become frontiers too. No frontier left after a full global tree: finished.
+ *
+ * Both trees are one ExplorationTree over AEP's parts (the static path space, the cached view,
+ * AepScore); DAEP composes its own (compose()).
  */
 class AepPlanner : public ExplorationPlanner {
 public:
     AepPlanner(const AepParams& params, const GainParams& gain, std::uint64_t seed);
+    // The tree's parts refer to the planner's own gain cache and counters.
+    AepPlanner(const AepPlanner&) = delete;
+    AepPlanner& operator=(const AepPlanner&) = delete;
 
     std::string name() const override { return "aep"; }
     Plan plan(const PlanningContext& context) override;
     bool keepFlying(const PlanningContext& context, const Plan& plan,
                     std::size_t nextWaypoint) override;
 
-    const Tree& tree() const { return tree_; }
+    const Tree& tree() const { return tree_.tree(); }
     const GainCache& cache() const { return cache_; }
     GainCache& cache() { return cache_; }
     const AepParams& params() const { return params_; }
     const AepStats& stats() const { return stats_; }
+    /** The parts the tree is grown with: AEP's, or those a subclass composed. */
+    const TreeParts& parts() const { return parts_; }
 
     /** Gain and yaw at p: the cache's GP estimate when confident, else ray cast (and cached). */
     YawGain evaluateGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p);
@@ -106,60 +106,26 @@ public:
     void refreshCache(const mapping::ExplorationMap& map, const Eigen::Vector3d& pose);
 
 protected:
-    // Hooks through which DAEP makes the same trees aware of moving people.
-
     /**
-     * The gain at p for a drone arriving at `arrival` from `from` (AEP: the static gain at the
-     * best yaw, from the cache's GP where it is confident unless `rayCast`; DAEP: the dynamic
-     * information gain d(p, t)).
+     * Grows the trees over other parts (DAEP: the time-aware validator, the dynamic score and
+     * the dynamic information gain). They must outlive the planner's use of them; the flight
+     * model stays the planner's own (flight()).
      */
-    virtual YawGain gainOnArrival(const PlanningContext& context, const Eigen::Vector3d& from,
-                                  const Eigen::Vector3d& p, double arrival, bool rayCast);
-    /** Whether turning then flying from `from` at `start` to `to` is safe (AEP: always). */
-    virtual bool moveSafe(const FlatPose& from, double start, const FlatPose& to) const;
-    /** moveSafe from tree node `parent` at its arrival time. */
-    bool moveSafeFrom(int parent, const FlatPose& to) const;
-    /** Time to get from pose a to pose b (AEP: turn to b's yaw, then fly). */
-    virtual double moveTime(const FlatPose& a, const FlatPose& b) const;
-    /** A node's score from its parent's: AEP adds gain * exp(-lambda * edge); DAEP's is the
-     * dynamic score s(p, t). */
-    virtual double branchScore(double parentValue, double gain, double edge,
-                               const Eigen::Vector3d& p) const;
-    /**
-     * Asked when the global tree found no way to any frontier: whether people alone are in
-     * the way, so the frontiers are kept and tried again as the people move, instead of the
-     * failure counting towards the end of the mission (AEP: never, it ignores people).
-     */
-    virtual bool peopleBlockFrontiers(const PlanningContext& context);
-    /**
-     * Grows a global tree from the pose towards the live frontiers (its nodes' gains enter
-     * the cache, so it also finds new ones); true when it reaches one.
-     */
-    bool globalTreeReachesFrontier(const PlanningContext& context);
+    void compose(const MoveValidator& moves, const BranchObjective& objective, ViewModel& view);
+    /** AEP's static path space, bound to the map of the current plan() call. */
+    const PathSpaceValidator& pathSpace() const { return pathSpace_; }
+    /** AEP's view: cached cubature gains and their GP estimate. */
+    CachedView& cachedView() { return cachedView_; }
+    FlightModel& flight() { return flight_; }
+    const FlightModel& flight() const { return flight_; }
     GainEvaluator& gainEvaluator() { return gain_; }
     const GainEvaluator& gainEvaluator() const { return gain_; }
-    const MotionLimits& motion() const { return motion_; }
     AepStats& mutableStats() { return stats_; }
 
 private:
-    bool edgeValid(const PlanningContext& context, int parent, const Eigen::Vector3d& to) const;
-    /** A straight move from a to b lies in the path space (see AepParams::crossUnknown). */
-    bool moveInPathSpace(const PlanningContext& context, const Eigen::Vector3d& a,
-                         const Eigen::Vector3d& b, bool leavingBlocked) const;
     Eigen::Vector3d sampleLocal(const Eigen::Vector3d& center);
-    /**
-     * One RRT* step towards the sample: steer, pick the cheapest valid parent within the rewire
-     * radius, add the node (with its gain in a local tree), rewire neighbours through it.
-     * Returns the new node or -1.
-     */
-    int extend(const PlanningContext& context, const Eigen::Vector3d& sample);
-    void setParent(int node, int parent);
-    void propagate(int node);
-    /** Appends a node under parent and sets its cost and score from the parent's. */
-    int addNode(int parent, const Eigen::Vector3d& p, const YawGain& view);
-    void reinsertPreviousBranch(const PlanningContext& context);
-    void growLocal(const PlanningContext& context);
     void resetTree(const PlanningContext& context);
+    void growLocal(const PlanningContext& context);
     Plan localPlan(const PlanningContext& context);
     /**
      * When the deadline passed during the local growth: the best branch grown so far if it
@@ -176,25 +142,35 @@ private:
     bool verifyFrontier(const mapping::ExplorationMap& map, int id);
     /** Returns whether a node came within goal_radius of a live frontier. */
     bool growGlobal(const PlanningContext& context, const std::vector<int>& frontiers);
+    /**
+     * Asked when the global tree found no way to any frontier: whether people alone are in
+     * the way (a global tree grown over the static path space reaches one: dynamic frontiers),
+     * or no tree grows at all while someone is in view of the drone (what they hide is not
+     * judged yet). Then the frontiers are kept and tried again as the people move, instead of
+     * the failure counting towards the end of the mission.
+     */
+    bool peopleBlockFrontiers(const PlanningContext& context);
     std::vector<Eigen::Vector3d> shortcut(const PlanningContext& context,
                                           const std::vector<Eigen::Vector3d>& path) const;
     Plan pathPlan(const PlanningContext& context, const std::vector<Eigen::Vector3d>& path,
                   double finalYaw) const;
 
     AepParams params_;
-    MotionLimits motion_;
+    FlightModel flight_;
     GainEvaluator gain_;
     GaussianProcess gp_;
     GainCache cache_;
+    AepStats stats_;
+    PathSpaceValidator pathSpace_;
+    AepScore aepScore_;
+    CachedView cachedView_;
+    TreeParts parts_;
     std::mt19937_64 rng_;
-    Tree tree_;
-    std::vector<std::vector<int>> children_;
+    ExplorationTree tree_;
     Aabb samplingBox_;
     bool rootFree_ = true;
-    bool globalTree_ = false;
     int best_ = -1;
     int globalFailures_ = 0;
-    AepStats stats_;
     std::vector<FlatPose> previousBranch_;
     std::vector<Eigen::Vector3d> trail_;  ///< where the drone flew since the last plan
 };

@@ -8,14 +8,9 @@
 #include "daep/planning/BlindWatch.h"
 #include "daep/planning/DynamicFrequencyMap.h"
 #include "daep/planning/DynamicObstacles.h"
+#include "daep/planning/DynamicTreeParts.h"
 
 namespace daep::planning {
-
-/** The dynamic score of a branch ([daep] score). */
-enum class DynamicScore {
-    Paper,      ///< s = parent + d exp(-lambda c) (1 + zeta DFM)
-    Reference,  ///< the reference code's: the DFM boost in the exponent
-};
 
 /** A behaviour that is on, off, or on when the people come from the camera. */
 enum class AutoSwitch { Auto, On, Off };
@@ -63,7 +58,9 @@ struct DaepParams {
 
 /**
  * Dynamic Autonomous Exploration Planner (Wiman et al.): AEP's local and global RRT* made
- * aware of moving people.
+ * aware of moving people, by growing the same ExplorationTree over DAEP's parts
+ * (DynamicTreeParts.h): the time-aware validator, the dynamic information gain and the dynamic
+ * score.
  *
  * - Every node carries its arrival time (turn, then fly, from its parent); a move is kept only
  *   when the drone, swept along it over its time interval, stays clear of every person's
@@ -126,19 +123,6 @@ public:
     std::vector<TimedSegment> timedMoves(const PlanningContext& context, const Plan& plan,
                                          std::size_t fromWaypoint) const;
 
-protected:
-    YawGain gainOnArrival(const PlanningContext& context, const Eigen::Vector3d& from,
-                          const Eigen::Vector3d& p, double arrival, bool rayCast) override;
-    bool moveSafe(const FlatPose& from, double start, const FlatPose& to) const override;
-    double moveTime(const FlatPose& a, const FlatPose& b) const override;
-    double branchScore(double parentValue, double gain, double edge,
-                       const Eigen::Vector3d& p) const override;
-    /**
-     * Whether a global tree that ignores the people reaches a frontier (dynamic frontiers), or
-     * no tree grows at all while someone is in view range: what they hide is not judged yet.
-     */
-    bool peopleBlockFrontiers(const PlanningContext& context) override;
-
 private:
     void observePeople(const PlanningContext& context);
     /** The people of the context as predicted bodies, sized for this drone and these people. */
@@ -146,13 +130,6 @@ private:
     /** Whether the plan's moves from nextWaypoint on, within the safety horizon, are clear. */
     bool movesClear(const DynamicObstacles& bodies, const PlanningContext& context,
                     const Plan& plan, std::size_t nextWaypoint) const;
-    /** The predicted bodies at time t within the gain's range of p (they can block its view). */
-    std::vector<BodyOccluder> bodiesInView(const Eigen::Vector3d& p, double t) const;
-    /**
-     * Caches the view at p as if nobody stood in it: a frontier people hide for now is still
-     * a frontier (the tree scores p by what is visible past them).
-     */
-    void cacheStaticView(const mapping::ExplorationMap& map, const Eigen::Vector3d& p);
     /** The plan up to its first unsafe move (at least one move, or none). */
     Plan cutAtFirstUnsafe(const PlanningContext& context, Plan plan) const;
     Plan bestEscape(const PlanningContext& context) const;
@@ -163,10 +140,6 @@ private:
     template <typename Visit>
     void forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
                            Visit&& visit) const;
-    /** The poses flown from a to b: with faceTravel, turning to the heading of travel first. */
-    std::vector<FlatPose> movePoses(const FlatPose& a, const FlatPose& b) const;
-    /** With faceTravel, every waypoint reached heading along its leg, then turned to its yaw. */
-    Plan facingTravel(const PlanningContext& context, Plan plan) const;
     Plan wait(const PlanningContext& context, const std::string& why) const;
     /** The worst blind threat to a drone staying at `stop` until `until`, if guarding. */
     std::optional<BlindThreat> blindThreat(const PlanningContext& context,
@@ -175,14 +148,15 @@ private:
     void lookBeforeStop(const PlanningContext& context, Plan& plan);
 
     DaepParams params_;
-    bool facingTravel_ = false;   ///< faceTravel decided for the current context
     bool guardingBlind_ = false;  ///< blindGuard decided for the current context
     BlindWatch watch_;
     int looks_ = 0;  ///< blind looks in a row
     DynamicObstacles obstacles_;
     DynamicFrequencyMap dfm_;
     double lastObservation_ = -1e300;
-    bool ignoringPeople_ = false;  ///< moves are checked against static geometry only
+    TimeAwareValidator timeAware_;
+    DynamicScoreObjective dynamicScore_;
+    DynamicInformationGain dynamicGain_;
 };
 
 }  // namespace daep::planning

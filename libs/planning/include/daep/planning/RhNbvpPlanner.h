@@ -7,6 +7,7 @@
 #include "daep/planning/GainEvaluator.h"
 #include "daep/planning/Planner.h"
 #include "daep/planning/Tree.h"
+#include "daep/planning/TreeParts.h"
 
 namespace daep::planning {
 
@@ -47,7 +48,7 @@ public:
     const RhNbvpParams& params() const { return params_; }
 
 private:
-    bool edgeValid(const PlanningContext& context, int parent, const Eigen::Vector3d& to) const;
+    bool edgeValid(int parent, const Eigen::Vector3d& to) const;
     int addNode(const PlanningContext& context, int parent, const Eigen::Vector3d& position,
                 double yaw);
     void reinsertPreviousBranch(const PlanningContext& context);
@@ -58,6 +59,7 @@ private:
     RhNbvpParams params_;
     GainEvaluator gain_;
     std::mt19937_64 rng_;
+    PathSpaceValidator pathSpace_;  ///< known free space, as AEP's default
     Tree tree_;
     Aabb samplingBox_;
     bool rootFree_ = true;

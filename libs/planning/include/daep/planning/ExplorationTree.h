@@ -1,0 +1,74 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "daep/common/Types.h"
+#include "daep/planning/Tree.h"
+#include "daep/planning/TreeParts.h"
+
+namespace daep::planning {
+
+/**
+ * The exploration RRT* of AEP and DAEP (the paper's time-aware tree when its parts know the
+ * people): nodes steered towards samples, each given the cheapest valid parent within the
+ * rewire radius, its view on arrival and its branch score; neighbours rewired through it when
+ * that shortens their way; a previous best branch re-added below a new root.
+ *
+ * Every node carries its arrival time, computed by the flight model along the branch. The
+ * parts decide the rest: which moves are valid (statically, and timed against people), what a
+ * node sees when it arrives, and how a branch is scored. The sampling (where, how many) is
+ * the planner's.
+ */
+class ExplorationTree {
+public:
+    ExplorationTree(double extensionRange, double rewireRadius);
+
+    /**
+     * Starts over from `root` at `time`. `rootFree`: the drone's own ball is clear (else the
+     * first move out of it only has to leave, see segmentFlyable). Nodes stay in `box`.
+     */
+    void reset(const FlatPose& root, double time, bool rootFree, const Aabb& box,
+               const TreeParts& parts);
+
+    /**
+     * One RRT* step towards the sample: steer, pick the cheapest valid parent within the rewire
+     * radius, add the node, rewire neighbours through it. With `withViews` the node gets its
+     * view on arrival; without (a global tree, which only finds ways) it faces along its edge
+     * with no gain. Returns the new node or -1.
+     */
+    int extend(const Eigen::Vector3d& sample, bool withViews);
+
+    /** Re-adds a branch below the root, pose by pose, while each move stays valid. */
+    void reuseBranch(const std::vector<FlatPose>& branch);
+
+    /** The straight move from node `parent` to `to` is statically valid. */
+    bool edgeValid(int parent, const Eigen::Vector3d& to) const;
+
+    /** Overwrites a node's gain (its score is left as it is). */
+    void setGain(int node, double gain) { tree_.node(node).gain = gain; }
+
+    const Tree& tree() const { return tree_; }
+    const Aabb& box() const { return box_; }
+
+private:
+    /** The timed move from node `parent`, at its arrival time, to `to` is valid. */
+    bool timedValidFrom(int parent, const FlatPose& to) const;
+    void setParent(int node, int parent);
+    /** Recomputes a node's cost, arrival time and score from its parent's, and its subtree's. */
+    void propagate(int node);
+    /** Appends a node under parent and sets its cost, time and score from the parent's. */
+    int addNode(int parent, const Eigen::Vector3d& p, const YawGain& view);
+    void rewireThrough(int added, const std::vector<std::pair<double, int>>& neighbours,
+                       int parent);
+
+    double extensionRange_;
+    double rewireRadius_;
+    Tree tree_;
+    std::vector<std::vector<int>> children_;
+    Aabb box_;
+    bool rootFree_ = true;
+    TreeParts parts_;
+};
+
+}  // namespace daep::planning
