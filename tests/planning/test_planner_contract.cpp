@@ -8,9 +8,11 @@
 
 #include "PlanningTestUtil.h"
 #include "daep/perception/PersonTrack.h"
+#include "daep/planning/FlightModel.h"
 #include "daep/planning/FlightSpace.h"
 #include "daep/planning/GainEvaluator.h"
 #include "daep/planning/PlannerRegistry.h"
+#include "daep/planning/TreeParts.h"
 
 namespace daep::planning {
 namespace {
@@ -36,10 +38,11 @@ public:
         }
         const Aabb box = shrink(context.explorationBox, kRobotRadius);
         const Eigen::Vector3d& from = context.pose.position;
+        pathSpace_.bind(*context.map, kRobotRadius, false);
         double bestValue = 0.0;
         for (int k = 0; k < kSamples; ++k) {
             const Eigen::Vector3d to = sampleInBox(box, rng_);
-            if (!segmentFlyable(*context.map, from, to, kRobotRadius, false))
+            if (!pathSpace_.staticValid(from, to, false))
                 continue;
             plan.tree.push_back({from, to});
             const YawGain view = gain_.bestYaw(*context.map, to);
@@ -56,8 +59,8 @@ public:
             plan.reason = "no view with gain";
             return plan;
         }
-        Waypoint& w = plan.waypoints.front();
-        w.arrivalTime = context.time + context.motion.travelTime(context.pose, w.pose);
+        const FlightModel flight{context.motion, false};
+        plan.waypoints = flight.flown(context.pose, context.time, plan.waypoints);
         plan.status = Plan::Status::Path;
         plan.score = bestValue;
         plan.reason = "best view";
@@ -69,6 +72,7 @@ private:
     static constexpr double kLambda = 0.5;
     static constexpr double kMinGain = 0.5;  ///< m^3
     static constexpr int kSamples = 40;
+    PathSpaceValidator pathSpace_;
     GainEvaluator gain_;
     std::mt19937_64 rng_;
     int idleCalls_ = 0;

@@ -120,8 +120,8 @@ Eigen::Vector3d AepPlanner::sampleLocal(const Eigen::Vector3d& center) {
     return s;
 }
 
-void AepPlanner::resetTree(const PlanningContext& context) {
-    tree_.reset(context.pose, context.time, rootFree_, samplingBox_, parts_);
+void AepPlanner::resetTree(const PlanningContext& context, ExplorationTree::Growth growth) {
+    tree_.reset(context.pose, context.time, rootFree_, samplingBox_, parts_, growth);
     best_ = -1;
 }
 
@@ -132,7 +132,7 @@ void AepPlanner::growLocal(const PlanningContext& context) {
            (tree().size() - 1 < params_.initialIterations ||
             (!goodEnough() && tree().size() - 1 < params_.cutoffIterations))) {
         ++stats_.samples;
-        if (tree_.extend(sampleLocal(context.pose.position), true) >= 0)
+        if (tree_.extend(sampleLocal(context.pose.position)) >= 0)
             best_ = tree().bestByScore();
     }
 }
@@ -172,7 +172,7 @@ Plan AepPlanner::plan(const PlanningContext& context) {
     rootFree_ = context.map->isSegmentFree(context.pose.position, context.pose.position,
                                            params_.robotRadius);
     refreshCache(*context.map, context.pose.position);
-    resetTree(context);
+    resetTree(context, ExplorationTree::Growth::Views);
     tree_.reuseBranch(previousBranch_);
     previousBranch_.clear();
     growLocal(context);
@@ -230,7 +230,7 @@ bool AepPlanner::verifyFrontier(const mapping::ExplorationMap& map, int id) {
 }
 
 bool AepPlanner::growGlobal(const PlanningContext& context, const std::vector<int>& frontiers) {
-    resetTree(context);
+    resetTree(context, ExplorationTree::Growth::Ways);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::uniform_int_distribution<std::size_t> pick(0,
                                                     frontiers.empty() ? 0 : frontiers.size() - 1);
@@ -244,7 +244,7 @@ bool AepPlanner::growGlobal(const PlanningContext& context, const std::vector<in
         const bool towardsGoal = !frontiers.empty() && unit(rng_) < params_.globalGoalBias;
         const Eigen::Vector3d sample = towardsGoal ? cache_.entry(frontiers[pick(rng_)]).position
                                                    : sampleInBox(samplingBox_, rng_);
-        const int added = tree_.extend(sample, false);
+        const int added = tree_.extend(sample);
         if (added < 0)
             continue;
         const Eigen::Vector3d p = tree().node(added).position;

@@ -12,7 +12,8 @@ ExplorationTree::ExplorationTree(double extensionRange, double rewireRadius)
     : extensionRange_(extensionRange), rewireRadius_(rewireRadius) {}
 
 void ExplorationTree::reset(const FlatPose& root, double time, bool rootFree, const Aabb& box,
-                            const TreeParts& parts) {
+                            const TreeParts& parts, Growth growth) {
+    growth_ = growth;
     tree_.reset(root);
     tree_.node(0).time = time;
     children_.assign(1, {});
@@ -58,7 +59,7 @@ int ExplorationTree::addNode(int parent, const Eigen::Vector3d& p, const YawGain
     return i;
 }
 
-int ExplorationTree::extend(const Eigen::Vector3d& sample, bool withViews) {
+int ExplorationTree::extend(const Eigen::Vector3d& sample) {
     const int nearest = tree_.nearest(sample);
     const Eigen::Vector3d p = steer(tree_.node(nearest).position, sample, extensionRange_);
     if (!box_.contains(p) || !parts_.moves->staticValid(p, p, false))
@@ -80,7 +81,7 @@ int ExplorationTree::extend(const Eigen::Vector3d& sample, bool withViews) {
     const TreeNode& cheapest = tree_.node(candidates[first].second);
     const FlatPose from{cheapest.position, cheapest.yaw};
     const YawGain view =
-        withViews
+        growth_ == Growth::Views
             ? parts_.view->viewOnArrival(cheapest.position, p,
                                          parts_.flight->reachTime(from, cheapest.time, p), false)
             : YawGain{headingTowards(cheapest.position, p, cheapest.yaw), 0.0};
@@ -108,11 +109,55 @@ void ExplorationTree::rewireThrough(int added,
         const TreeNode& other = tree_.node(q);
         const double through = tree_.node(added).cost + (other.position - p).norm();
         if (through < other.cost - 1e-9 && edgeValid(added, other.position) &&
-            timedValidFrom(added, {other.position, other.yaw})) {
-            setParent(q, added);
-            propagate(q);
+            timedValidFrom(added, {other.position, other.yaw}))
+            rewire(q, added);
+    }
+}
+
+bool ExplorationTree::rewire(int node, int parent) {
+    const int oldParent = tree_.node(node).parent;
+    std::vector<std::pair<int, TreeNode>> saved;
+    if (parts_.moves->checksPeople())  // else no re-timed move can fail
+        saveSubtree(node, saved);
+    setParent(node, parent);
+    if (retime(node))
+        return true;
+    setParent(node, oldParent);
+    for (const auto& [i, n] : saved)
+        tree_.node(i) = n;
+    return false;
+}
+
+void ExplorationTree::saveSubtree(int node, std::vector<std::pair<int, TreeNode>>& saved) const {
+    saved.emplace_back(node, tree_.node(node));
+    for (int child : children_[static_cast<std::size_t>(node)])
+        saveSubtree(child, saved);
+}
+
+bool ExplorationTree::retime(int node) {
+    TreeNode& n = tree_.node(node);
+    const TreeNode& parent = tree_.node(n.parent);
+    const FlatPose from{parent.position, parent.yaw};
+    if (growth_ == Growth::Views) {
+        const double reach = parts_.flight->reachTime(from, parent.time, n.position);
+        if (parts_.view->peopleInView(n.position, n.time) ||
+            parts_.view->peopleInView(n.position, reach)) {
+            const YawGain view =
+                parts_.view->viewOnArrival(parent.position, n.position, reach, false);
+            n.yaw = view.yaw;
+            n.gain = view.gain;
         }
     }
+    if (!parts_.moves->timedValid(from, parent.time, {n.position, n.yaw}))
+        return false;
+    const double edge = (n.position - parent.position).norm();
+    n.cost = parent.cost + edge;
+    n.time = parent.time + parts_.flight->moveTime(from, {n.position, n.yaw});
+    n.score = parts_.objective->score(parent.score, n.gain, edge, n.position);
+    for (int child : children_[static_cast<std::size_t>(node)])
+        if (!retime(child))
+            return false;
+    return true;
 }
 
 void ExplorationTree::reuseBranch(const std::vector<FlatPose>& branch) {

@@ -32,6 +32,9 @@ double FlightModel::moveTime(const FlatPose& a, const FlatPose& b) const {
 }
 
 double FlightModel::reachTime(const FlatPose& from, double start, const Eigen::Vector3d& to) const {
+    const Eigen::Vector2d d = (to - from.position).head<2>();
+    if (faceTravel && d.norm() >= 0.05)
+        return start + moveTime(from, {to, std::atan2(d.y(), d.x())});
     return start + (to - from.position).norm() / motion.speed;
 }
 

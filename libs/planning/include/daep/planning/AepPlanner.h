@@ -124,7 +124,7 @@ protected:
 
 private:
     Eigen::Vector3d sampleLocal(const Eigen::Vector3d& center);
-    void resetTree(const PlanningContext& context);
+    void resetTree(const PlanningContext& context, ExplorationTree::Growth growth);
     void growLocal(const PlanningContext& context);
     Plan localPlan(const PlanningContext& context);
     /**

@@ -24,20 +24,23 @@ class ExplorationTree {
 public:
     ExplorationTree(double extensionRange, double rewireRadius);
 
+    /** What a tree is grown for: views to score (local), or only ways to a goal (global). */
+    enum class Growth { Views, Ways };
+
     /**
      * Starts over from `root` at `time`. `rootFree`: the drone's own ball is clear (else the
      * first move out of it only has to leave, see segmentFlyable). Nodes stay in `box`.
      */
     void reset(const FlatPose& root, double time, bool rootFree, const Aabb& box,
-               const TreeParts& parts);
+               const TreeParts& parts, Growth growth);
 
     /**
      * One RRT* step towards the sample: steer, pick the cheapest valid parent within the rewire
-     * radius, add the node, rewire neighbours through it. With `withViews` the node gets its
-     * view on arrival; without (a global tree, which only finds ways) it faces along its edge
-     * with no gain. Returns the new node or -1.
+     * radius, add the node, rewire neighbours through it. Growing views, the node gets its
+     * view on arrival; growing ways, it faces along its edge with no gain. Returns the new
+     * node or -1.
      */
-    int extend(const Eigen::Vector3d& sample, bool withViews);
+    int extend(const Eigen::Vector3d& sample);
 
     /** Re-adds a branch below the root, pose by pose, while each move stays valid. */
     void reuseBranch(const std::vector<FlatPose>& branch);
@@ -57,6 +60,18 @@ private:
     void setParent(int node, int parent);
     /** Recomputes a node's cost, arrival time and score from its parent's, and its subtree's. */
     void propagate(int node);
+    /**
+     * Moves `node` under `parent` when its whole re-timed subtree stays valid; else leaves the
+     * tree as it was. Returns whether it moved.
+     */
+    bool rewire(int node, int parent);
+    /**
+     * propagate() that re-checks what it re-times: a view people may stand in (at the old or
+     * the new arrival) is seen again at the new arrival, and every re-timed move is checked
+     * against the people. False at the first move that is no longer valid.
+     */
+    bool retime(int node);
+    void saveSubtree(int node, std::vector<std::pair<int, TreeNode>>& saved) const;
     /** Appends a node under parent and sets its cost, time and score from the parent's. */
     int addNode(int parent, const Eigen::Vector3d& p, const YawGain& view);
     void rewireThrough(int added, const std::vector<std::pair<double, int>>& neighbours,
@@ -69,6 +84,7 @@ private:
     Aabb box_;
     bool rootFree_ = true;
     TreeParts parts_;
+    Growth growth_ = Growth::Views;
 };
 
 }  // namespace daep::planning

@@ -28,7 +28,9 @@ struct FlightModel {
     double moveTime(const FlatPose& a, const FlatPose& b) const;
     /**
      * When the drone leaving `from` at `start` reaches `to`, before it turns to a view chosen
-     * there: the flight alone (the view, and so the turn before the flight, is not chosen yet).
+     * there. With faceTravel: after the turn to the heading of travel and the flight (the view
+     * there is the one along the leg). Without: the flight alone, since the drone turns to the
+     * view first and the view is not chosen yet.
      */
     double reachTime(const FlatPose& from, double start, const Eigen::Vector3d& to) const;
     /** The waypoints with the turns movePoses adds, timed from `pose` at `time`. */
