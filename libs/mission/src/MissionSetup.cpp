@@ -24,10 +24,7 @@ Settings loadSettings(const ExperimentConfig& experiment) {
     const ConfigReader r(experiment.config(), "experiment", experiment.source());
     Settings s;
     s.worldName = r.requireString("world");
-    s.mode = r.requireString("mode");
-    if (s.mode != "static" && s.mode != "dynamic")
-        throw InputError(r.where("mode") + ": [experiment] mode: '" + s.mode +
-                         "' is not one of static, dynamic");
+    s.mode = requireOneOf(r, "mode", {"static", "dynamic"});
     s.plannerName = r.requireString("planner");
     s.start = r.requireInt("start");
     const std::string seedText = r.requireString("seed");
@@ -43,11 +40,8 @@ Settings loadSettings(const ExperimentConfig& experiment) {
     s.maxTime = r.requireDouble("max_time_s");
     if (s.maxTime <= 0)
         throw InputError(r.where("max_time_s") + ": [experiment] max_time_s: must be > 0");
-    const std::string planningTime = r.requireString("planning_time");
-    if (planningTime != "measured" && planningTime != "fixed")
-        throw InputError(r.where("planning_time") + ": [experiment] planning_time: '" +
-                         planningTime + "' is not one of measured, fixed");
-    s.planningTime = planningTime == "fixed" ? PlanningTime::Fixed : PlanningTime::Measured;
+    s.planningTime = requireEnum<PlanningTime>(
+        r, "planning_time", {{"measured", PlanningTime::Measured}, {"fixed", PlanningTime::Fixed}});
     s.planningFixed = r.requireDouble("planning_fixed_s");
     s.climb = r.requireDouble("climb_m");
     s.sampleEvery = r.requireDouble("timeseries_every_s");

@@ -62,7 +62,7 @@ AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
     const ConfigReader planning(config, "planning");
     p.robotRadius = requireNonNegative(planning, "robot_radius");
     p.crossUnknown =
-        requireOneOf(planning, "path_space", {"known_free", "not_occupied"}) == "not_occupied";
+        requireEnum<bool>(planning, "path_space", {{"known_free", false}, {"not_occupied", true}});
     return p;
 }
 
