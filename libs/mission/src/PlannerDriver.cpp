@@ -45,12 +45,12 @@ PlannerDriver::Call PlannerDriver::call(const planning::PlanningContext& context
         const auto timed = setup_.stages->time(Stage::Planning);
         c.plan = planner_->plan(ctx);
     }
+    c.wallSec = secondsSince(t0);
     if (!c.plan.wellFormed())  // a planner's bug, not the user's input
         throw std::logic_error("planner " + planner_->name() + " returned a '" +
                                planning::statusName(c.plan.status) + "' plan with " +
                                std::to_string(c.plan.waypoints.size()) + " waypoints (" +
                                c.plan.reason + ")");
-    c.wallSec = secondsSince(t0);
     if (!c.plan.tree.empty())
         lastTree_ = c.plan.tree;
     ++iterations_;

@@ -211,16 +211,14 @@ void AepPlanner::cacheMapFrontiers(const PlanningContext& context) {
     };
     for (const Eigen::Vector3d& p : context.map->frontierViewpoints(context.pose.position, usable,
                                                                     kReach, kSpacing, kMaxViews)) {
-        ++stats_.rayCasts;
-        const YawGain view = gain_.bestYaw(*context.map, p);
-        if (view.gain > params_.cacheThreshold)
-            cache_.insert(p, view.yaw, view.gain);
+        if (context.deadline.passed())
+            return;
+        cachedView_.remember(p, cachedView_.rayCast(*context.map, p));
     }
 }
 
 bool AepPlanner::verifyFrontier(const mapping::ExplorationMap& map, int id) {
-    ++stats_.rayCasts;
-    const YawGain view = gain_.bestYaw(map, cache_.entry(id).position);
+    const YawGain view = cachedView_.rayCast(map, cache_.entry(id).position);
     if (view.gain <= params_.cacheThreshold) {
         cache_.remove(id);
         return false;
