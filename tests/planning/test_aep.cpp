@@ -303,6 +303,42 @@ TEST(AepPlanner, WithMapFrontiersItDoesNotFinishWhileTheMapHasAFrontierNoSampleF
     EXPECT_EQ(done.status, Plan::Status::Finished) << done.reason;
 }
 
+TEST(AepPlanner, WithMapFrontiersAFailedGlobalPlanLooksForTheFrontierItCanReach) {
+    // The frontier cached at the far east end (x > 12) is shut off by a wall at x = 6; the
+    // corridor is unknown west of x = -12, farther than any local sample sees from x = 5, and
+    // a two-node global tree surveys nothing. Trusting the cache, the failed global plan
+    // leaves only the far end cached; looking on the map's own frontier after it, the
+    // viewpoints by the western unknown are cached too, for the next global tree to reach.
+    for (const std::string mapFrontiers : {"false", "true"}) {
+        std::string text =
+            test::editKey(test::defaultsText(), "aep", "map_frontiers", &mapFrontiers);
+        for (const char* key : {"global_min_nodes", "global_max_nodes"}) {
+            const std::string two = "2";
+            text = test::editKey(text, "aep", key, &two);
+        }
+        const auto cfg = test::configFromText(text);
+        AepPlanner planner(AepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 5);
+        planner.cache().insert({14.0, 2.0, 1.0}, 0.0, 100.0);
+        auto closed = test::makeMap(box(-20, 0, 0, 16, 4, 2), 23.9);  // clears x > -12
+        for (double y = 0.1; y < 4.0; y += 0.2)
+            for (double z = 0.1; z < 2.0; z += 0.2) {
+                closed->insertPointCloud({11.9, y, z},
+                                         {Eigen::Vector3f(-100.f, float(y), float(z))});
+                closed->insertPointCloud({6.1, y, z}, {Eigen::Vector3f(6.1f, float(y), float(z))});
+            }
+        const Plan failed = planner.plan(contextFor(*closed, {5.0, 2.0, 1.0}));
+        EXPECT_TRUE(failed.waypoints.empty()) << failed.reason;
+        EXPECT_NE(failed.status, Plan::Status::Finished) << failed.reason;
+        int west = 0;
+        for (int id : planner.cache().liveIds())
+            west += planner.cache().entry(id).position.x() < -9.0;
+        if (mapFrontiers == "true")
+            EXPECT_GT(west, 0);
+        else
+            EXPECT_EQ(west, 0);
+    }
+}
+
 TEST(AepPlanner, AsTheReferenceBaselineItKeepsTryingWhileAFrontierIsLeft) {
     // The reference AEP's loop ends only when no frontier is left: back at x = 2 behind the
     // imprint, every global plan fails, and the drone hovers global_retry_wait_s and retries.

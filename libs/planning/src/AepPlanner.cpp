@@ -333,6 +333,10 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
         return plan;
     }
     ++globalFailures_;
+    // Frontiers a tree sample saw may all lie out of reach now (the map around them filled
+    // in); the map's own frontier is looked for from the drone through space it can fly.
+    if (params_.mapFrontiers)
+        cacheMapFrontiers(context);
     const bool givingUp =
         params_.globalPlannerCounter > 0 && globalFailures_ >= params_.globalPlannerCounter;
     if (givingUp || cache_.size() == 0) {

@@ -12,6 +12,7 @@
 #include "daep/common/Geometry.h"
 #include "daep/mapping/ExplorationMap.h"
 #include "daep/planning/FlightSpace.h"
+#include "daep/planning/WayOut.h"
 
 namespace daep::planning {
 namespace {
@@ -207,6 +208,10 @@ namespace {
 
 /** Clearance (m) an unsafe escape may give up to stay off walkways unseen people may use. */
 constexpr double kWalkwayMargin = 0.2;
+/** A way out replaces the straight escapes when it spends this much less time in a body (s)... */
+constexpr double kWayOutMargin = 0.4;
+/** ...and its first this many metres are flown before the next judgement. */
+constexpr double kWayOutLeg = 0.8;
 
 /** One candidate escape: where to, how much clearance it keeps, and whether it is in view. */
 struct Escape {
@@ -346,6 +351,9 @@ Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
     });
     if (!any)
         return wait(context, "a person is coming and no escape is free of static obstacles");
+    if (best.gap <= 0.0)
+        if (std::optional<Plan> out = wayOut(context, best.goal.position))
+            return std::move(*out);
     Plan plan;
     plan.status = Plan::Status::Path;
     plan.escape = true;
@@ -354,6 +362,39 @@ Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
     std::ostringstream why;
     why << "evasion: " << (best.seen ? "" : "blind ") << "escape of " << best.distance
         << " m with clearance " << best.gap << " m";
+    plan.reason = why.str();
+    return plan;
+}
+
+std::optional<Plan> DaepPlanner::wayOut(const PlanningContext& context,
+                                        const Eigen::Vector3d& straight) const {
+    WayOutParams search;
+    search.robotRadius = params().robotRadius;
+    const double hoverUntil = context.time + params_.evasionHorizon;
+    const std::optional<WayOut> way =
+        findWayOut(*context.map, context.explorationBox, obstacles_, context.pose, context.time,
+                   context.motion, hoverUntil, search);
+    const WayOut escape = judgeWay(obstacles_, context.pose.position, context.time, {straight},
+                                   context.motion, hoverUntil);
+    if (!way || way->exposure > escape.exposure - kWayOutMargin)
+        return std::nullopt;
+    Plan plan;
+    plan.status = Plan::Status::Path;
+    plan.escape = true;
+    FlatPose at = context.pose;
+    double time = context.time, flown = 0.0;
+    for (const Eigen::Vector3d& q : way->path) {
+        const FlatPose next{q, context.pose.yaw};
+        flown += (q - at.position).norm();
+        time += context.motion.travelTime(at, next);
+        plan.waypoints.push_back({next, time});
+        at = next;
+        if (flown >= kWayOutLeg - 1e-9)
+            break;  // then judged again, from there
+    }
+    std::ostringstream why;
+    why << "evasion: way out of " << way->length << " m (" << flown << " m now), " << way->exposure
+        << " s in a body (the best straight escape " << escape.exposure << " s)";
     plan.reason = why.str();
     return plan;
 }

@@ -134,6 +134,12 @@ private:
     Plan cutAtFirstUnsafe(const PlanningContext& context, Plan plan) const;
     Plan bestEscape(const PlanningContext& context) const;
     /**
+     * When every straight escape is unsafe: the start of the way out (findWayOut) if it spends
+     * less time in the predicted bodies than the best straight escape, to `straight`.
+     */
+    std::optional<Plan> wayOut(const PlanningContext& context,
+                               const Eigen::Vector3d& straight) const;
+    /**
      * visit(goal, heading, distance) for every short straight escape move from `from` that is
      * free of static obstacles, nearest first, until visit returns false.
      */
