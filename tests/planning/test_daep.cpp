@@ -326,7 +326,7 @@ TEST_F(DaepRoom, FrontiersPeopleHideForNowAreStillCached) {
     const GainEvaluator gain(GainParams::fromConfig(*test::configFromText(daepText())));
     for (int id : planner.cache().liveIds()) {
         const CachedGain& c = planner.cache().entry(id);
-        EXPECT_GT(c.gain, planner.params().cacheThreshold);
+        EXPECT_GT(c.gain, planner.params().view.cacheThreshold);
         EXPECT_LE(c.gain, gain.bestYaw(*map, c.position).gain * 6.0 + 1e-9);  // boosted at most
     }
 }

@@ -18,15 +18,6 @@ namespace {
 
 constexpr double kTrailSpacing = 0.5;
 
-CachedViewParams cachedViewParams(const AepParams& p) {
-    CachedViewParams v;
-    v.gpRadius = p.gpRadius;
-    v.gpMaxNeighbours = p.gpMaxNeighbours;
-    v.sigmaThreshold = p.sigmaThreshold;
-    v.cacheThreshold = p.cacheThreshold;
-    return v;
-}
-
 }  // namespace
 
 AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
@@ -41,13 +32,13 @@ AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
     p.maxSamples = requireIntAtLeast(r, "max_samples", 1);
     p.lambda = requireNonNegative(r, "lambda");
     p.zeroGain = requireNonNegative(r, "zero_gain");
-    p.sigmaThreshold = requireNonNegative(r, "sigma_thresh");
+    p.view.sigmaThreshold = requireNonNegative(r, "sigma_thresh");
     p.gp.lengthScale = requirePositive(r, "gp_length_scale");
     p.gp.signalSigma = requirePositive(r, "gp_sigma_f");
     p.gp.noiseSigma = requirePositive(r, "gp_sigma_n");
-    p.gpRadius = requirePositive(r, "gp_radius");
-    p.gpMaxNeighbours = requireIntAtLeast(r, "gp_max_neighbours", 1);
-    p.cacheThreshold = requireNonNegative(r, "cache_node_threshold");
+    p.view.gpRadius = requirePositive(r, "gp_radius");
+    p.view.gpMaxNeighbours = requireIntAtLeast(r, "gp_max_neighbours", 1);
+    p.view.cacheThreshold = requireNonNegative(r, "cache_node_threshold");
     p.cacheUpdateRadius = requireNonNegative(r, "cache_update_radius");
     p.globalMinNodes = requireIntAtLeast(r, "global_min_nodes", 1);
     p.globalMaxNodes = requireIntAtLeast(r, "global_max_nodes", p.globalMinNodes);
@@ -72,7 +63,7 @@ AepPlanner::AepPlanner(const AepParams& params, const GainParams& gain, std::uin
       gp_(params.gp),
       cache_(1.0),
       aepScore_(params.lambda),
-      cachedView_(cachedViewParams(params), gain_, cache_, gp_, stats_),
+      cachedView_(params.view, gain_, cache_, gp_, stats_),
       parts_{&pathSpace_, &aepScore_, &cachedView_, &flight_},
       rng_(seed),
       tree_(params.extensionRange, params.rewireRadius) {}
@@ -96,7 +87,7 @@ void AepPlanner::refreshCache(const mapping::ExplorationMap& map, const Eigen::V
     for (int id : dirty) {
         const YawGain view = gain_.bestYaw(map, cache_.entry(id).position);
         ++stats_.cacheRefreshed;
-        if (view.gain > params_.cacheThreshold) {
+        if (view.gain > params_.view.cacheThreshold) {
             cache_.update(id, view.yaw, view.gain);
         } else {
             cache_.remove(id);
@@ -213,13 +204,15 @@ void AepPlanner::cacheMapFrontiers(const PlanningContext& context) {
                                                                     kReach, kSpacing, kMaxViews)) {
         if (context.deadline.passed())
             return;
+        if (!cache_.near(p, kSpacing, 1).empty())
+            continue;  // a frontier there is cached already
         cachedView_.remember(p, cachedView_.rayCast(*context.map, p));
     }
 }
 
 bool AepPlanner::verifyFrontier(const mapping::ExplorationMap& map, int id) {
     const YawGain view = cachedView_.rayCast(map, cache_.entry(id).position);
-    if (view.gain <= params_.cacheThreshold) {
+    if (view.gain <= params_.view.cacheThreshold) {
         cache_.remove(id);
         return false;
     }

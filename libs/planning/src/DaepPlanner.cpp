@@ -63,7 +63,7 @@ namespace {
 AepParams withoutGpWhenOff(const DaepParams& p) {
     AepParams a = p.aep;
     if (!p.useGp)
-        a.sigmaThreshold = 0.0;  // the GP's sigma is never below 0: every node is ray cast
+        a.view.sigmaThreshold = 0.0;  // the GP's sigma is never below 0: every node is ray cast
     return a;
 }
 
@@ -376,7 +376,9 @@ std::optional<Plan> DaepPlanner::wayOut(const PlanningContext& context,
                    context.motion, hoverUntil, search);
     const WayOut escape = judgeWay(obstacles_, context.pose.position, context.time, {straight},
                                    context.motion, hoverUntil);
-    if (!way || way->exposure > escape.exposure - kWayOutMargin)
+    // Less time inside the bodies, and never deeper in them than the straight escape goes.
+    if (!way || way->exposure > escape.exposure - kWayOutMargin ||
+        way->deepest < escape.deepest - 1e-9)
         return std::nullopt;
     Plan plan;
     plan.status = Plan::Status::Path;

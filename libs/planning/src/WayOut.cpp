@@ -66,10 +66,12 @@ constexpr double kPiece = 0.4;
 struct Exposure {
     double time = 0.0;
     double gap = kInf;
+    double deepest = kInf;  ///< least gap, inside bodies too, once under way
 
     void add(const Exposure& o) {
         time += o.time;
         gap = std::min(gap, o.gap);
+        deepest = std::min(deepest, o.deepest);
     }
     bool betterThan(const Exposure& o, double length, double otherLength) const {
         if (std::abs(time - o.time) > 1e-9)
@@ -80,9 +82,12 @@ struct Exposure {
     }
 };
 
-/** The straight flight a -> b from `start` (or a hover at a, when b == a, for `hold` s). */
+/**
+ * The straight flight a -> b from `start` (or a hover at a, when b == a) for `duration` s.
+ * The piece starting at `now`, where every way starts, does not count for the depth.
+ */
 Exposure exposureOf(const DynamicObstacles& bodies, const Eigen::Vector3d& a,
-                    const Eigen::Vector3d& b, double start, double duration) {
+                    const Eigen::Vector3d& b, double start, double duration, double now) {
     Exposure e;
     const int pieces = std::max(1, static_cast<int>(std::ceil(duration / kPiece - 1e-9)));
     for (int k = 0; k < pieces; ++k) {
@@ -92,6 +97,8 @@ Exposure exposureOf(const DynamicObstacles& bodies, const Eigen::Vector3d& a,
         piece.start = start + duration * k / pieces;
         (piece.from == piece.to ? piece.turnTime : piece.flyTime) = duration / pieces;
         const double gap = bodies.clearance(piece);
+        if (piece.start > now + 1e-9)
+            e.deepest = std::min(e.deepest, gap);
         if (gap <= 0.0)
             e.time += duration / pieces;
         else
@@ -117,13 +124,13 @@ WayOut judgeWay(const DynamicObstacles& bodies, const Eigen::Vector3d& from, dou
     double length = 0.0;
     for (const Eigen::Vector3d& p : path) {
         const double leg = (p - at).norm();
-        e.add(exposureOf(bodies, at, p, time + length / motion.speed, leg / motion.speed));
+        e.add(exposureOf(bodies, at, p, time + length / motion.speed, leg / motion.speed, time));
         length += leg;
         at = p;
     }
     const double arrival = time + length / motion.speed;
-    e.add(exposureOf(bodies, at, at, arrival, std::max(kPiece, hoverUntil - arrival)));
-    return {std::move(path), length, e.time, e.gap};
+    e.add(exposureOf(bodies, at, at, arrival, std::max(kPiece, hoverUntil - arrival), time));
+    return {std::move(path), length, e.time, e.gap, e.deepest};
 }
 
 std::optional<WayOut> findWayOut(const mapping::ExplorationMap& map, const Aabb& box,
@@ -171,7 +178,7 @@ std::optional<WayOut> findWayOut(const mapping::ExplorationMap& map, const Aabb&
                 return;
             Exposure e = at.exposure;
             e.add(exposureOf(bodies, pa, pb, time + at.length / motion.speed,
-                             (pb - pa).norm() / motion.speed));
+                             (pb - pa).norm() / motion.speed, time));
             if (!e.betterThan(next.exposure, length, next.length))
                 return;
             next = {e, length, a, false};
@@ -187,12 +194,13 @@ std::optional<WayOut> findWayOut(const mapping::ExplorationMap& map, const Aabb&
         const Eigen::Vector3d p = lattice.position(g);
         const double arrival = time + l.length / motion.speed;
         Exposure e = l.exposure;
-        e.add(exposureOf(bodies, p, p, arrival, std::max(kPiece, hoverUntil - arrival)));
+        e.add(exposureOf(bodies, p, p, arrival, std::max(kPiece, hoverUntil - arrival), time));
         if (best && !e.betterThan(bestExposure, l.length, best->length))
             continue;
         WayOut way;
         way.exposure = e.time;
         way.gap = e.gap;
+        way.deepest = e.deepest;
         way.length = l.length;
         for (int q = g; q != root; q = labels[static_cast<std::size_t>(q)].previous)
             way.path.push_back(lattice.position(q));

@@ -25,11 +25,8 @@ struct AepParams {
     int maxSamples = 2000;
     double lambda = 0.75;
     double zeroGain = 25.0;
-    double sigmaThreshold = 0.2;
     GpParams gp;
-    double gpRadius = 2.0;
-    int gpMaxNeighbours = 10;
-    double cacheThreshold = 15.0;
+    CachedViewParams view;  ///< gp_radius, gp_max_neighbours, sigma_thresh, cache_node_threshold
     double cacheUpdateRadius = 5.0;
     int globalMinNodes = 100;
     int globalMaxNodes = 1500;

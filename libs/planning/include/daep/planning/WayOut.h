@@ -30,6 +30,8 @@ struct WayOut {
     double exposure = 0.0;
     /** The least gap (m) to the predicted bodies while outside them. */
     double gap = 0.0;
+    /** The least gap (m), negative inside a body, once under way (after the first 0.4 s). */
+    double deepest = 0.0;
 };
 
 /**
