@@ -336,6 +336,11 @@ TEST(AepPlanner, WithMapFrontiersAFailedGlobalPlanLooksForTheFrontierItCanReach)
             EXPECT_GT(west, 0);
         else
             EXPECT_EQ(west, 0);
+        // Failing again, it caches no frontier twice.
+        const std::size_t cached = planner.cache().size();
+        for (int k = 0; k < 3; ++k)
+            EXPECT_TRUE(planner.plan(contextFor(*closed, {5.0, 2.0, 1.0})).waypoints.empty());
+        EXPECT_EQ(planner.cache().size(), cached);
     }
 }
 
