@@ -13,7 +13,8 @@ namespace daep::planning {
  * The exploration RRT* of AEP and DAEP (the paper's time-aware tree when its parts know the
  * people): nodes steered towards samples, each given the cheapest valid parent within the
  * rewire radius, its view on arrival and its branch score; neighbours rewired through it when
- * that shortens their way; a previous best branch re-added below a new root.
+ * that shortens their way and everything the rewire re-times stays valid; a previous best
+ * branch re-added below a new root.
  *
  * Every node carries its arrival time, computed by the flight model along the branch. The
  * parts decide the rest: which moves are valid (statically, and timed against people), what a
