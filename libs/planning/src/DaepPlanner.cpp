@@ -380,20 +380,20 @@ std::optional<Plan> DaepPlanner::wayOut(const PlanningContext& context,
     if (!way || way->exposure > escape.exposure - kWayOutMargin ||
         way->deepest < escape.deepest - 1e-9)
         return std::nullopt;
-    Plan plan;
-    plan.status = Plan::Status::Path;
-    plan.escape = true;
-    FlatPose at = context.pose;
-    double time = context.time, flown = 0.0;
+    std::vector<Waypoint> legs;  // at the drone's heading: no turn, it moves at once
+    Eigen::Vector3d at = context.pose.position;
+    double flown = 0.0;
     for (const Eigen::Vector3d& q : way->path) {
-        const FlatPose next{q, context.pose.yaw};
-        flown += (q - at.position).norm();
-        time += context.motion.travelTime(at, next);
-        plan.waypoints.push_back({next, time});
-        at = next;
+        flown += (q - at).norm();
+        legs.push_back({{q, context.pose.yaw}, 0.0});
+        at = q;
         if (flown >= kWayOutLeg - 1e-9)
             break;  // then judged again, from there
     }
+    Plan plan;
+    plan.status = Plan::Status::Path;
+    plan.escape = true;
+    plan.waypoints = FlightModel{context.motion, false}.flown(context.pose, context.time, legs);
     std::ostringstream why;
     why << "evasion: way out of " << way->length << " m (" << flown << " m now), " << way->exposure
         << " s in a body (the best straight escape " << escape.exposure << " s)";

@@ -38,7 +38,7 @@ void ExplorationTree::setParent(int node, int parent) {
     tree_.node(node).parent = parent;
 }
 
-void ExplorationTree::propagate(int node) {
+void ExplorationTree::timeFromParent(int node) {
     TreeNode& n = tree_.node(node);
     const TreeNode& parent = tree_.node(n.parent);
     const double edge = (n.position - parent.position).norm();
@@ -46,6 +46,10 @@ void ExplorationTree::propagate(int node) {
     n.time =
         parent.time + parts_.flight->moveTime({parent.position, parent.yaw}, {n.position, n.yaw});
     n.score = parts_.objective->score(parent.score, n.gain, edge, n.position);
+}
+
+void ExplorationTree::propagate(int node) {
+    timeFromParent(node);
     for (int child : children_[static_cast<std::size_t>(node)])
         propagate(child);
 }
@@ -150,10 +154,7 @@ bool ExplorationTree::retime(int node) {
     }
     if (!parts_.moves->timedValid(from, parent.time, {n.position, n.yaw}))
         return false;
-    const double edge = (n.position - parent.position).norm();
-    n.cost = parent.cost + edge;
-    n.time = parent.time + parts_.flight->moveTime(from, {n.position, n.yaw});
-    n.score = parts_.objective->score(parent.score, n.gain, edge, n.position);
+    timeFromParent(node);
     for (int child : children_[static_cast<std::size_t>(node)])
         if (!retime(child))
             return false;

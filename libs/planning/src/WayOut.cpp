@@ -107,6 +107,12 @@ Exposure exposureOf(const DynamicObstacles& bodies, const Eigen::Vector3d& a,
     return e;
 }
 
+/** Hovering at p from `arrival` until `hoverUntil`, judged for at least one piece. */
+Exposure hoverExposure(const DynamicObstacles& bodies, const Eigen::Vector3d& p, double arrival,
+                       double hoverUntil, double now) {
+    return exposureOf(bodies, p, p, arrival, std::max(kPiece, hoverUntil - arrival), now);
+}
+
 /** The best way found to a lattice point: its exposure, length, where from. */
 struct Label {
     Exposure exposure{kInf, -kInf};
@@ -128,8 +134,7 @@ WayOut judgeWay(const DynamicObstacles& bodies, const Eigen::Vector3d& from, dou
         length += leg;
         at = p;
     }
-    const double arrival = time + length / motion.speed;
-    e.add(exposureOf(bodies, at, at, arrival, std::max(kPiece, hoverUntil - arrival), time));
+    e.add(hoverExposure(bodies, at, time + length / motion.speed, hoverUntil, time));
     return {std::move(path), length, e.time, e.gap, e.deepest};
 }
 
@@ -191,10 +196,9 @@ std::optional<WayOut> findWayOut(const mapping::ExplorationMap& map, const Aabb&
         const Label& l = labels[static_cast<std::size_t>(g)];
         if (g == root || !l.settled)
             continue;
-        const Eigen::Vector3d p = lattice.position(g);
-        const double arrival = time + l.length / motion.speed;
         Exposure e = l.exposure;
-        e.add(exposureOf(bodies, p, p, arrival, std::max(kPiece, hoverUntil - arrival), time));
+        e.add(hoverExposure(bodies, lattice.position(g), time + l.length / motion.speed, hoverUntil,
+                            time));
         if (best && !e.betterThan(bestExposure, l.length, best->length))
             continue;
         WayOut way;

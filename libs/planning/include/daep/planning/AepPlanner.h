@@ -117,7 +117,6 @@ protected:
     const FlightModel& flight() const { return flight_; }
     GainEvaluator& gainEvaluator() { return gain_; }
     const GainEvaluator& gainEvaluator() const { return gain_; }
-    AepStats& mutableStats() { return stats_; }
 
 private:
     Eigen::Vector3d sampleLocal(const Eigen::Vector3d& center);

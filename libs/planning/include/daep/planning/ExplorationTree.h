@@ -53,13 +53,14 @@ public:
     void setGain(int node, double gain) { tree_.node(node).gain = gain; }
 
     const Tree& tree() const { return tree_; }
-    const Aabb& box() const { return box_; }
 
 private:
     /** The timed move from node `parent`, at its arrival time, to `to` is valid. */
     bool timedValidFrom(int parent, const FlatPose& to) const;
     void setParent(int node, int parent);
-    /** Recomputes a node's cost, arrival time and score from its parent's, and its subtree's. */
+    /** Sets a node's cost, arrival time and score from its parent's. */
+    void timeFromParent(int node);
+    /** timeFromParent for a node and its whole subtree. */
     void propagate(int node);
     /**
      * Moves `node` under `parent` when its whole re-timed subtree stays valid; else leaves the
