@@ -9,6 +9,7 @@
 #include "daep/planning/DaepPlanner.h"
 #include "daep/planning/FlightSpace.h"
 #include "daep/planning/PlannerRegistry.h"
+#include "daep/planning/WayOut.h"
 
 namespace daep::planning {
 namespace {
@@ -183,6 +184,44 @@ TEST_F(DaepRoom, TheEscapeMovesAtOnceToSafetyPreferringWhatTheCameraSees) {
                 EXPECT_GE(d, chosen.norm() - 1e-9) << k;
             }
         }
+}
+
+TEST_F(DaepRoom, AnEscapeIsDroppedOnlyForAClearlyBetterOneWhenItsWayIsNoLongerClear) {
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, root, -2.4);
+    std::vector<PersonForecast> coming{walker(0, {3.5, 2.0}, {-0.35, 0}, ctx.time)};
+    coming[0].accelNoise = 1e-4;
+    ctx.people = &coming;
+    const Plan plan = planner.escape(ctx);
+    ASSERT_TRUE(plan.escape);
+    ASSERT_EQ(plan.waypoints.size(), 1u) << plan.reason;
+    const Eigen::Vector3d goal = plan.waypoints[0].pose.position;
+    // A frame later, halfway: the walker came on as predicted, so the escape is flown on.
+    PlanningContext later = ctx;
+    later.time += 0.2;
+    later.pose.position = 0.5 * (root + goal);
+    std::vector<PersonForecast> asPredicted{walker(0, {3.43, 2.0}, {-0.35, 0}, later.time)};
+    asPredicted[0].accelNoise = 1e-4;
+    later.people = &asPredicted;
+    EXPECT_TRUE(planner.keepFlying(later, plan, 0));
+    // Someone the camera had not seen stands 1 m to the side of where the escape leads: it is
+    // dropped for a fresh escape that keeps clearly farther from both.
+    std::vector<PersonForecast> beside = asPredicted;
+    beside.push_back(walker(1, goal.head<2>() + Eigen::Vector2d(0.0, -1.0), {0, 0}, later.time));
+    beside[1].accelNoise = 1e-4;
+    later.people = &beside;
+    EXPECT_FALSE(planner.keepFlying(later, plan, 0));
+    const Plan fresh = planner.escape(later);
+    ASSERT_TRUE(fresh.escape) << fresh.reason;
+    const WayOut onward = judgeWay(planner.obstacles(), later.pose.position, later.time, {goal},
+                                   later.motion, later.time + planner.daepParams().evasionHorizon);
+    std::vector<Eigen::Vector3d> freshPath;
+    for (const Waypoint& w : fresh.waypoints)
+        freshPath.push_back(w.pose.position);
+    const WayOut instead = judgeWay(planner.obstacles(), later.pose.position, later.time, freshPath,
+                                    later.motion, later.time + planner.daepParams().evasionHorizon);
+    EXPECT_GT(onward.exposure, 0.0);
+    EXPECT_LT(instead.exposure, onward.exposure - 0.4) << fresh.reason;
 }
 
 TEST_F(DaepRoom, InsideAKeepOutAlreadyTheEscapeLeadsAwayFromThePerson) {

@@ -49,10 +49,10 @@ bool FlightLoop::hoverUntil(double end) {
         watchingHover_ = false;
         if (!pendingEvasion_)
             break;
-        const planning::Plan escape = std::move(*pendingEvasion_);
+        planning::Plan escape = std::move(*pendingEvasion_);
         pendingEvasion_.reset();
         evaded = true;
-        flyEscape(escape);
+        flyEscape(std::move(escape));
     }
     return evaded;
 }
@@ -92,10 +92,18 @@ void FlightLoop::takeOffAndLookAround(double climb) {
     }
 }
 
-void FlightLoop::flyEscape(const planning::Plan& escape) {
-    ++hoverEvasions_;
-    for (std::size_t i = 0; i < escape.waypoints.size() && !mission_.stopping(); ++i)
-        flyTo(escape.waypoints[i].pose, &escape, i);
+void FlightLoop::flyEscape(planning::Plan escape) {
+    for (;;) {
+        ++hoverEvasions_;
+        if (fly(escape) || mission_.stopping())
+            return;
+        // Dropped for a better escape from here (or the map closed it): take the fresh one.
+        std::optional<planning::Plan> fresh =
+            core_.driver.planner().evasion(context(), hoverSafeUntil_);
+        if (!fresh)
+            return;
+        escape = std::move(*fresh);
+    }
 }
 
 std::optional<planning::Plan> FlightLoop::planOnce(double recordTime) {

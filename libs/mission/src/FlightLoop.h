@@ -62,7 +62,7 @@ public:
 private:
     bool advanceUntil(double end, bool flying);
     bool flyTo(const FlatPose& goal, const planning::Plan* plan = nullptr, std::size_t index = 0);
-    void flyEscape(const planning::Plan& escape);
+    void flyEscape(planning::Plan escape);
     void processFrame();
 
     SimulatorSource& sim_;

@@ -424,8 +424,37 @@ bool DaepPlanner::keepFlying(const PlanningContext& context, const Plan& plan,
     if (!AepPlanner::keepFlying(context, plan, nextWaypoint))
         return false;
     if (plan.escape)
-        return true;  // already the move with the most clearance: stopping it helps nobody
+        return !freshEscapeBetter(context, plan, nextWaypoint);
     return movesClear(obstacles_, context, plan, nextWaypoint);
+}
+
+namespace {
+
+std::vector<Eigen::Vector3d> positionsFrom(const Plan& plan, std::size_t first) {
+    std::vector<Eigen::Vector3d> out;
+    for (std::size_t i = first; i < plan.waypoints.size(); ++i)
+        out.push_back(plan.waypoints[i].pose.position);
+    return out;
+}
+
+}  // namespace
+
+bool DaepPlanner::freshEscapeBetter(const PlanningContext& context, const Plan& escape,
+                                    std::size_t nextWaypoint) const {
+    const Eigen::Vector3d& here = context.pose.position;
+    const double hoverUntil = context.time + params_.evasionHorizon;
+    const WayOut flying = judgeWay(obstacles_, here, context.time,
+                                   positionsFrom(escape, nextWaypoint), context.motion, hoverUntil);
+    if (flying.exposure <= 0.0)
+        return false;
+    const Plan fresh = bestEscape(context);
+    if (!fresh.escape)
+        return false;
+    const WayOut instead = judgeWay(obstacles_, here, context.time, positionsFrom(fresh, 0),
+                                    context.motion, hoverUntil);
+    // The same rule that lets a way out replace the straight escapes.
+    return instead.exposure < flying.exposure - kWayOutMargin &&
+           instead.deepest >= flying.deepest - 1e-9;
 }
 
 bool DaepPlanner::movesClear(const DynamicObstacles& bodies, const PlanningContext& context,

@@ -134,6 +134,13 @@ private:
     Plan cutAtFirstUnsafe(const PlanningContext& context, Plan plan) const;
     Plan bestEscape(const PlanningContext& context) const;
     /**
+     * Whether the escape being flown, from nextWaypoint on, now leads into a predicted body
+     * and a fresh escape from here (bestEscape) spends clearly less time in one: a walker who
+     * turned while the drone got out of their way.
+     */
+    bool freshEscapeBetter(const PlanningContext& context, const Plan& escape,
+                           std::size_t nextWaypoint) const;
+    /**
      * When every straight escape is unsafe: the start of the way out (findWayOut) if it spends
      * less time in the predicted bodies than the best straight escape, to `straight`.
      */

@@ -51,7 +51,10 @@ struct Plan {
     Status status = Status::Finished;
     std::vector<Waypoint> waypoints;  ///< empty unless the status is Path
     double waitSeconds = 0.0;         ///< how long a Wait hovers
-    /** An escape from a person: the best move there is, flown to its end without re-checks. */
+    /**
+     * An escape from a person: the best move there is. Flown on while it stays the best; a
+     * planner's keepFlying drops it only for a fresh escape that is clearly better.
+     */
     bool escape = false;
     double gain = 0.0;   ///< gain of the chosen goal (m^3 of unknown volume)
     double score = 0.0;  ///< planner-specific value of the chosen branch

@@ -35,18 +35,21 @@ struct WayOut {
 };
 
 /**
- * The way out of a corner: when no short straight escape keeps clear of the people coming,
- * the path through the known free space around the drone, flown at its heading, that spends
- * the least time inside the predicted bodies (flying, then hovering at its end until
- * `hoverUntil`, at least 0.4 s); of equal ones the one with the larger least gap outside
- * them, then the shorter. A label-setting search over a lattice of `spacing` within `radius`
- * (three layers: the drone's height and one step above and below), each move timed as flown
- * from `time`, judged in 0.4 s pieces, and checked in free space with the robot radius.
+ * The exposure and gap of flying `path` from `from` at `time`, then hovering at its end until
+ * `hoverUntil` (at least 0.4 s).
  */
-/** The exposure and gap of flying `path` from `from` at `time`, then hovering as above. */
 WayOut judgeWay(const DynamicObstacles& bodies, const Eigen::Vector3d& from, double time,
                 std::vector<Eigen::Vector3d> path, const MotionLimits& motion, double hoverUntil);
 
+/**
+ * The way out of a corner: when no short straight escape keeps clear of the people coming,
+ * the path through the known free space around the drone, flown at its heading, that spends
+ * the least time inside the predicted bodies (as judgeWay judges it); of equal ones the one with
+ * the larger least gap outside them, then the shorter. A label-setting search over a lattice of
+ * `spacing` within `radius` (three layers: the drone's height and one step above and below), each
+ * move timed as flown from `time`, judged in 0.4 s pieces, and checked in free space with the robot
+ * radius.
+ */
 std::optional<WayOut> findWayOut(const mapping::ExplorationMap& map, const Aabb& box,
                                  const DynamicObstacles& bodies, const FlatPose& from, double time,
                                  const MotionLimits& motion, double hoverUntil,
