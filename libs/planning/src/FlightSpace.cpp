@@ -38,14 +38,35 @@ double sampleYaw(std::mt19937_64& rng) {
     return std::uniform_real_distribution<double>(-M_PI, M_PI)(rng);
 }
 
+double clearanceFromOccupied(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+                             double radius) {
+    if (map.isSegmentFreeOrUnknown(p, p, radius))
+        return radius;
+    double clear = 0.0, blocked = radius;
+    if (!map.isSegmentFreeOrUnknown(p, p, clear))
+        return -1.0;
+    for (int i = 0; i < 6; ++i) {
+        const double mid = 0.5 * (clear + blocked);
+        (map.isSegmentFreeOrUnknown(p, p, mid) ? clear : blocked) = mid;
+    }
+    return clear;
+}
+
 bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
                     const Eigen::Vector3d& b, double radius, bool leavingBlockedRoot) {
     if (!leavingBlockedRoot)
         return map.isSegmentFree(a, b, radius);
+    if (!map.isSegmentFree(b, b, radius))
+        return false;
     const double length = (b - a).norm();
     const Eigen::Vector3d start =
         length > radius ? Eigen::Vector3d(a + (b - a) * (radius / length)) : b;
-    return map.isSegmentFreeOrUnknown(start, b, radius) && map.isSegmentFree(b, b, radius);
+    if (map.isSegmentFreeOrUnknown(start, b, radius))
+        return true;
+    // Hemmed in closer than the radius (by a surface or a person's imprint seen after the drone
+    // stopped): any move that never comes closer to it than the drone already is.
+    const double clear = clearanceFromOccupied(map, a, radius);
+    return clear > 0.0 && map.isSegmentFreeOrUnknown(a, b, clear);
 }
 
 }  // namespace daep::planning

@@ -20,12 +20,19 @@ Eigen::Vector3d steer(const Eigen::Vector3d& from, const Eigen::Vector3d& to, do
 /**
  * Whether the drone can fly a -> b with its capsule of `radius` in known free space. With
  * `leavingBlockedRoot` (the drone is at a, but its own ball is not known free: cells around it
- * unseen, or an obstacle nearer than the radius) the first radius is skipped, the rest must not
- * touch occupied cells and b must be known free: the drone is physically at a and must be able
- * to leave.
+ * unseen, or an obstacle nearer than the radius) b must be known free, and either the move past
+ * its first radius keeps the radius from occupied cells, or the whole move keeps at least the
+ * clearance the drone has at a: the drone is physically at a and must be able to leave.
  */
 bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
                     const Eigen::Vector3d& b, double radius, bool leavingBlockedRoot);
+
+/**
+ * The largest radius up to `radius` (to about radius / 64) whose ball around p touches no
+ * occupied cell (grazed surfaces count, as in the clearance checks); -1 when p's own cell does.
+ */
+double clearanceFromOccupied(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+                             double radius);
 
 /** The box shrunk by margin on every side (collapsing to its centre along too-thin axes). */
 Aabb shrink(const Aabb& box, double margin);
