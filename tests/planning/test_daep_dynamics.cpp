@@ -183,6 +183,44 @@ TEST(DynamicGain, DropsExactlyByTheRaysABodyOccludes) {
     EXPECT_LT(g.bestYaw(*map, p, &bodies).gain, g.bestYaw(*map, p).gain + 1e-9);
 }
 
+TEST(DynamicGain, OneMarchGivesBothViewsBitForBit) {
+    // Walls the rays stop at, and bodies in front of and behind them.
+    auto map = test::makeMap(test::box(-8, -8, -1, 8, 8, 3));
+    const Aabb room = test::box(-3, -2, -1, 4, 3, 2);
+    map->insertPointCloud({0.5, 0.5, 0.5}, test::roomScan(room, {0.5, 0.5, 0.5}, 2.0, 40.0));
+    GainEvaluator g(GainParams{});
+    g.setYawAngleBooster(2.0, 1.5);
+    const Eigen::Vector3d p(1.3, -0.4, 0.2);
+    const std::vector<BodyOccluder> bodies{
+        {{2.3, -0.4}, 0.3, 1.8}, {{-1.0, 1.5}, 0.3, 1.8}, {{7.0, 6.0}, 0.3, 1.8}};
+    const GainEvaluator::ColumnViews views = g.columnsOpenAndOccluded(*map, p, bodies);
+    const std::vector<double> open = g.columns(*map, p);
+    const std::vector<double> occluded = g.columns(*map, p, &bodies);
+    EXPECT_EQ(views.open, open);
+    EXPECT_EQ(views.occluded, occluded);
+    EXPECT_NE(open, occluded);  // the near bodies hide something
+}
+
+TEST(GainEvaluator, BestYawIsTheFirstMaximumOfTheDegreeSweep) {
+    auto map = test::makeMap(test::box(-8, -8, -1, 8, 8, 3));
+    const Aabb room = test::box(-3, -2, -1, 4, 3, 2);
+    map->insertPointCloud({0.5, 0.5, 0.5}, test::roomScan(room, {0.5, 0.5, 0.5}, 2.0, 40.0));
+    const GainEvaluator g(GainParams{});
+    for (const Eigen::Vector3d p :
+         {Eigen::Vector3d(1.3, -0.4, 0.2), Eigen::Vector3d(3.5, 2.5, 1.0)}) {
+        const std::vector<double> cols = g.columns(*map, p);
+        YawGain sweep{0.0, -1.0};
+        for (int deg = -179; deg <= 180; ++deg) {
+            const double gain = g.windowGain(cols, deg * M_PI / 180.0);
+            if (gain > sweep.gain)
+                sweep = {deg * M_PI / 180.0, gain};
+        }
+        const YawGain best = g.bestYaw(cols);
+        EXPECT_EQ(best.yaw, sweep.yaw);
+        EXPECT_EQ(best.gain, sweep.gain);
+    }
+}
+
 TEST(BorderBoost, WeighsOnlySamplesNearTheBoxsSideFaces) {
     const Aabb room = test::box(0, 0, 0, 30, 30, 2);
     const auto map = test::makeMap(room);

@@ -62,11 +62,12 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
             inBox[a][std::size_t(i)] = c >= box.min[a] && c < box.max[a];
         }
     }
-    scale = 1.0 / tree.getResolution();
+    pointIndex.scale = 1.0 / tree.getResolution();
+    pointIndex.dims = dims;
     const int keyOfZero = tree.coordToKey(0.0);
-    for (int a = 0; a < 3; ++a) {
-        scaledLow[std::size_t(a)] = int(gridMin[a]) - keyOfZero;
-        scaledHigh[std::size_t(a)] = scaledLow[std::size_t(a)] + dims[std::size_t(a)];
+    for (std::size_t a = 0; a < 3; ++a) {
+        pointIndex.low[a] = int(gridMin[a]) - keyOfZero;
+        pointIndex.high[a] = pointIndex.low[a] + dims[a];
     }
     if (total > kMaxGridCells) {
         std::ostringstream err;
@@ -201,6 +202,8 @@ ExplorationMap::ExplorationMap(const MapParams& params, const Aabb& explorationB
     : params_(params), box_(explorationBox) {
     validate(params, explorationBox);
     impl_ = std::make_unique<Impl>(params, explorationBox);
+    gridIndex_ = impl_->pointIndex;
+    gridCells_ = impl_->cells.data();  // the grid is never resized
 }
 
 ExplorationMap::~ExplorationMap() = default;
@@ -223,11 +226,7 @@ void ExplorationMap::insertPointCloud(const Eigen::Vector3d& origin,
     ++revision_;
 }
 
-CellState ExplorationMap::state(const Eigen::Vector3d& p) const {
-    const std::int64_t i = impl_->gridIndex(p);
-    if (i >= 0) {
-        return CellState(impl_->cells[std::size_t(i)]);
-    }
+CellState ExplorationMap::stateOffGrid(const Eigen::Vector3d& p) const {
     octomap::OcTreeKey key;
     if (!impl_->keyOf(p, key)) {
         return CellState::Unknown;

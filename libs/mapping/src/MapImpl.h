@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "daep/mapping/DenseGridIndex.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::mapping {
@@ -44,28 +45,14 @@ struct ExplorationMap::Impl {
     bool keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const;
     bool axisKeyOf(double c, octomap::key_type& k) const;
 
-    /// Same factor as the octree's private resolution_factor (1 / resolution).
-    double scale = 0.0;
-    /// Grid bounds in scaled coordinates (coordinate * scale): [scaledLow, scaledHigh).
-    std::array<int, 3> scaledLow{}, scaledHigh{};
+    /// Point to dense index; its scale is the octree's private resolution_factor.
+    DenseGridIndex pointIndex;
 
     /**
-     * Dense index of the cell containing p, or -1 outside the grid. Computes the octree's key
-     * formula floor(p * scale) + offset without the libm floor call; the tests check it
-     * against octree search on and off cell boundaries.
+     * Dense index of the cell containing p, or -1 outside the grid. The tests check it against
+     * octree search on and off cell boundaries.
      */
-    std::int64_t gridIndex(const Eigen::Vector3d& p) const {
-        std::array<int, 3> i{};
-        for (int a = 0; a < 3; ++a) {
-            const double v = p[a] * scale;
-            if (!(v >= scaledLow[std::size_t(a)] && v < scaledHigh[std::size_t(a)])) {
-                return -1;  // also rejects NaN
-            }
-            const int t = int(v);
-            i[std::size_t(a)] = t - (double(t) > v) - scaledLow[std::size_t(a)];
-        }
-        return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
-    }
+    std::int64_t gridIndex(const Eigen::Vector3d& p) const { return pointIndex(p); }
 
     /** Dense index of key, or -1 when the key lies outside the dense grid. */
     std::int64_t gridIndex(const octomap::OcTreeKey& key) const {

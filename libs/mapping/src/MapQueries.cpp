@@ -138,9 +138,21 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
             if (!m.axisKeyOf(std::min(xa, xb) - r, x0) || !m.axisKeyOf(std::max(xa, xb) + r, x1)) {
                 return false;
             }
-            for (int x = std::max<int>(x0, lo[0]); x <= std::min<int>(x1, hi[0]); ++x) {
+            const int xFirst = std::max<int>(x0, lo[0]), xLast = std::min<int>(x1, hi[0]);
+            if (xFirst > xLast)
+                continue;
+            // Dense indices along the row when all of it lies on the grid.
+            k[0] = octomap::key_type(xLast);
+            const bool rowOnGrid = m.gridIndex(k) >= 0;
+            k[0] = octomap::key_type(xFirst);
+            const std::int64_t rowStart = rowOnGrid ? m.gridIndex(k) : -1;
+            for (int x = xFirst; x <= xLast; ++x) {
                 k[0] = octomap::key_type(x);
-                if (allowed(m.stateAt(k)) && !(m.guardGrazed && m.grazedSurface(k))) {
+                const std::int64_t i = rowOnGrid ? rowStart + (x - xFirst) : -1;
+                const CellState state = i >= 0 ? CellState(m.cells[std::size_t(i)]) : m.stateAt(k);
+                if (allowed(state) &&
+                    !(m.guardGrazed && (i < 0 || (m.flags[std::size_t(i)] & kEverHit)) &&
+                      m.grazedSurface(k))) {
                     continue;
                 }
                 const Eigen::Vector3d cellLo(m.cellLow(k[0]), y0, z0);

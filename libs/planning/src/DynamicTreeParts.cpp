@@ -70,21 +70,24 @@ bool DynamicInformationGain::peopleInView(const Eigen::Vector3d& p, double t) co
 YawGain DynamicInformationGain::viewOnArrival(const Eigen::Vector3d& from, const Eigen::Vector3d& p,
                                               double arrival, bool rayCast) {
     const std::vector<BodyOccluder> inRange = bodiesInView(p, arrival);
-    const std::vector<BodyOccluder>* occluders = inRange.empty() ? nullptr : &inRange;
-    if (occluders)
-        staticView_.remember(p, staticView_.rayCast(staticView_.map(), p));
+    const GainEvaluator& g = staticView_.evaluator();
     const Eigen::Vector2d leg = (p - from).head<2>();
-    if (flight_.faceTravel && leg.norm() > 0.05) {
-        const std::vector<double> columns = staticView_.rayCastColumns(p, occluders);
-        const GainEvaluator& g = staticView_.evaluator();
-        if (!occluders)
-            staticView_.remember(p, g.bestYaw(columns));
+    const bool facingTravel = flight_.faceTravel && leg.norm() > 0.05;
+    if (inRange.empty()) {
+        if (!facingTravel)
+            return staticView_.viewOnArrival(from, p, arrival, rayCast);
+        const std::vector<double> columns = staticView_.rayCastColumns(p, nullptr);
+        staticView_.remember(p, g.bestYaw(columns));
         const double heading = std::atan2(leg.y(), leg.x());
         return {heading, g.windowGain(columns, heading)};
     }
-    if (!occluders)
-        return staticView_.viewOnArrival(from, p, arrival, rayCast);
-    return staticView_.rayCast(staticView_.map(), p, occluders);
+    // The cache keeps the view without people, who will have walked on.
+    const GainEvaluator::ColumnViews views = staticView_.rayCastColumnsOpenAndOccluded(p, inRange);
+    staticView_.remember(p, g.bestYaw(views.open));
+    if (!facingTravel)
+        return g.bestYaw(views.occluded);
+    const double heading = std::atan2(leg.y(), leg.x());
+    return {heading, g.windowGain(views.occluded, heading)};
 }
 
 }  // namespace daep::planning

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "RayGeometry.h"
 #include "daep/common/Config.h"
@@ -14,6 +15,13 @@ namespace daep::planning {
 using detail::exitDistance;
 using detail::kTwoPi;
 using detail::tileCount;
+
+namespace {
+constexpr int kSweepFirstDeg = -179, kSweepLastDeg = 180;  // bestYaw's candidate headings
+double sweepYaw(int deg) {
+    return deg * M_PI / 180.0;
+}
+}  // namespace
 
 GainParams GainParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     const ConfigReader r(config, "gain");
@@ -58,6 +66,13 @@ GainEvaluator::GainEvaluator(const GainParams& params) : params_(params) {
     for (int i = 0; i < columns_; ++i)
         centres[i] = (i + 0.5) * columnWidth_;
     cubature_ = RayCubature(params, centres);
+    for (int deg = kSweepFirstDeg; deg <= kSweepLastDeg; ++deg) {
+        sweepStart_.push_back(sweepTerms_.size());
+        windowTerms(sweepYaw(deg), [this](int column, double weight) {
+            sweepTerms_.push_back({column, weight});
+        });
+    }
+    sweepStart_.push_back(sweepTerms_.size());
 }
 
 double rayEntry(const BodyOccluder& body, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
@@ -107,19 +122,32 @@ double GainEvaluator::yawAngleBoost(const Aabb& box, const Eigen::Vector3d& s) c
 
 double GainEvaluator::columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
                                  int column, const std::vector<BodyOccluder>* occluders) const {
+    const auto [open, occluded] = columnGains(map, p, column, occluders);
+    return occluders ? occluded : open;
+}
+
+std::pair<double, double> GainEvaluator::columnGains(
+    const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
+    const std::vector<BodyOccluder>* occluders) const {
     const Aabb& box = map.explorationBox();
     if (!box.contains(p))
-        return 0.0;
+        return {0.0, 0.0};
     const bool boosted = boostAlpha_ != 1.0 && boostDistance_ > 0.0;
-    double gain = 0.0;
+    double gain = 0.0, occludedGain = 0.0;
     for (int j = 0; j < cubature_.rings; ++j) {
         const Eigen::Vector3d& dir = cubature_.directions[column * cubature_.rings + j];
-        double end = exitDistance(box, p, dir);
+        const double end = exitDistance(box, p, dir);
+        double occludedEnd = end;
         if (occluders)
             for (const BodyOccluder& body : *occluders)
-                end = std::min(end, rayEntry(body, p, dir));
-        double ray = 0.0;
+                occludedEnd = std::min(occludedEnd, rayEntry(body, p, dir));
+        double ray = 0.0, occludedRay = 0.0;
+        bool stoppedByBody = false;
         for (std::size_t k = 0; k < cubature_.radii.size() && cubature_.radii[k] <= end; ++k) {
+            if (!stoppedByBody && cubature_.radii[k] > occludedEnd) {
+                occludedRay = ray;
+                stoppedByBody = true;
+            }
             const Eigen::Vector3d s = p + cubature_.radii[k] * dir;
             const mapping::CellState state = map.state(s);
             if (state == mapping::CellState::Occupied)
@@ -128,8 +156,9 @@ double GainEvaluator::columnGain(const mapping::ExplorationMap& map, const Eigen
                 ray += cubature_.shellWeights[k] * (boosted ? yawAngleBoost(box, s) : 1.0);
         }
         gain += cubature_.ringWeights[j] * ray;
+        occludedGain += cubature_.ringWeights[j] * (stoppedByBody ? occludedRay : ray);
     }
-    return gain;
+    return {gain, occludedGain};
 }
 
 std::vector<double> GainEvaluator::columns(const mapping::ExplorationMap& map,
@@ -141,22 +170,35 @@ std::vector<double> GainEvaluator::columns(const mapping::ExplorationMap& map,
     return result;
 }
 
-template <class ColumnFn>
-double GainEvaluator::window(double yaw, const ColumnFn& columnGainOf) const {
+GainEvaluator::ColumnViews GainEvaluator::columnsOpenAndOccluded(
+    const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+    const std::vector<BodyOccluder>& occluders) const {
+    ColumnViews views{std::vector<double>(columns_), std::vector<double>(columns_)};
+    for (int i = 0; i < columns_; ++i)
+        std::tie(views.open[i], views.occluded[i]) = columnGains(map, p, i, &occluders);
+    return views;
+}
+
+template <class TermFn>
+void GainEvaluator::windowTerms(double yaw, const TermFn& term) const {
     const double half = 0.5 * std::min(params_.hfov, kTwoPi);
     const double a = yaw - half;
     const double b = yaw + half;
     const auto first = static_cast<long>(std::floor(a / columnWidth_));
     const auto last = static_cast<long>(std::floor(b / columnWidth_));
-    double gain = 0.0;
     for (long k = first; k <= last; ++k) {
         const double overlap = std::min(b, (k + 1) * columnWidth_) -
                                std::max(a, static_cast<double>(k) * columnWidth_);
         if (overlap <= 0.0)
             continue;
-        const int index = static_cast<int>(((k % columns_) + columns_) % columns_);
-        gain += overlap / columnWidth_ * columnGainOf(index);
+        term(static_cast<int>(((k % columns_) + columns_) % columns_), overlap / columnWidth_);
     }
+}
+
+template <class ColumnFn>
+double GainEvaluator::window(double yaw, const ColumnFn& columnGainOf) const {
+    double gain = 0.0;
+    windowTerms(yaw, [&](int column, double weight) { gain += weight * columnGainOf(column); });
     return gain;
 }
 
@@ -171,11 +213,13 @@ double GainEvaluator::windowGain(const std::vector<double>& columns, double yaw)
 
 YawGain GainEvaluator::bestYaw(const std::vector<double>& columns) const {
     YawGain best{0.0, -1.0};
-    for (int deg = -179; deg <= 180; ++deg) {
-        const double yaw = deg * M_PI / 180.0;
-        const double gain = windowGain(columns, yaw);
+    for (int deg = kSweepFirstDeg; deg <= kSweepLastDeg; ++deg) {
+        const std::size_t d = std::size_t(deg - kSweepFirstDeg);
+        double gain = 0.0;
+        for (std::size_t i = sweepStart_[d]; i < sweepStart_[d + 1]; ++i)
+            gain += sweepTerms_[i].weight * columns[std::size_t(sweepTerms_[i].column)];
         if (gain > best.gain)
-            best = {yaw, gain};
+            best = {sweepYaw(deg), gain};
     }
     return best;
 }

@@ -67,6 +67,12 @@ std::vector<double> CachedView::rayCastColumns(const Eigen::Vector3d& p,
     return gain_.columns(*map_, p, occluders);
 }
 
+GainEvaluator::ColumnViews CachedView::rayCastColumnsOpenAndOccluded(
+    const Eigen::Vector3d& p, const std::vector<BodyOccluder>& occluders) {
+    stats_.rayCasts += 2;
+    return gain_.columnsOpenAndOccluded(*map_, p, occluders);
+}
+
 void CachedView::remember(const Eigen::Vector3d& p, const YawGain& view) {
     if (view.gain > params_.cacheThreshold)
         cache_.insert(p, view.yaw, view.gain);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "daep/common/Types.h"
+#include "daep/mapping/DenseGridIndex.h"
 
 namespace mrpt::config {
 class CConfigFileBase;
@@ -87,7 +88,10 @@ public:
     void insertObservation(const mrpt::obs::CObservation3DRangeScan& obs, const FlatPose& robot,
                            const std::vector<PersonFootprint>& people);
 
-    CellState state(const Eigen::Vector3d& p) const;
+    CellState state(const Eigen::Vector3d& p) const {
+        const std::int64_t i = gridIndex_(p);
+        return i >= 0 ? CellState(gridCells_[i]) : stateOffGrid(p);
+    }
     bool isFree(const Eigen::Vector3d& p) const { return state(p) == CellState::Free; }
     bool isOccupied(const Eigen::Vector3d& p) const { return state(p) == CellState::Occupied; }
     bool isUnknown(const Eigen::Vector3d& p) const { return state(p) == CellState::Unknown; }
@@ -156,8 +160,13 @@ private:
     /** With noReturnIsFree: end points beyond maxRange for the pixels with no return. */
     void addNoReturnRays(const mrpt::obs::CObservation3DRangeScan& obs, const SensorFrame& frame);
 
+    /** state() of a point outside the dense grid: the octree's answer. */
+    CellState stateOffGrid(const Eigen::Vector3d& p) const;
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
+    DenseGridIndex gridIndex_;                 ///< a copy of the dense grid's
+    const std::uint8_t* gridCells_ = nullptr;  ///< the dense grid's cell states
     MapParams params_;
     Aabb box_;
     std::size_t knownInBox_ = 0;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "daep/common/Types.h"
@@ -104,6 +105,18 @@ public:
     YawGain bestYaw(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
                     const std::vector<BodyOccluder>* occluders = nullptr) const;
 
+    /** Columns at p without and with rays stopped by `occluders`. */
+    struct ColumnViews {
+        std::vector<double> open, occluded;
+    };
+    /**
+     * Both column sets from one march: the rays stopped by a body see a prefix of what the
+     * open rays see, so the occluded sums are the open ones' partial sums (bit for bit those of
+     * columns(map, p, &occluders)).
+     */
+    ColumnViews columnsOpenAndOccluded(const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
+                                       const std::vector<BodyOccluder>& occluders) const;
+
     /** Field-of-view window over precomputed columns. */
     double windowGain(const std::vector<double>& columns, double yaw) const;
     YawGain bestYaw(const std::vector<double>& columns) const;
@@ -118,9 +131,26 @@ public:
 private:
     double columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
                       const std::vector<BodyOccluder>* occluders = nullptr) const;
+    /** A column's gain {open, occluded}: rays marched to the box, the occluded sum stopped at
+     * the first body. */
+    std::pair<double, double> columnGains(const mapping::ExplorationMap& map,
+                                          const Eigen::Vector3d& p, int column,
+                                          const std::vector<BodyOccluder>* occluders) const;
     double yawAngleBoost(const Aabb& box, const Eigen::Vector3d& s) const;
     template <class ColumnFn>
     double window(double yaw, const ColumnFn& columnGainOf) const;
+    /** Calls term(column, weight) for each column overlapping the field of view at yaw. */
+    template <class TermFn>
+    void windowTerms(double yaw, const TermFn& term) const;
+
+    /** One column's share of a yaw's window: gain += weight * columns[column]. */
+    struct WindowTerm {
+        int column;
+        double weight;
+    };
+    /** The windows of bestYaw's 1 degree sweep, computed once: sweepTerms_[sweepStart_[d]...]. */
+    std::vector<WindowTerm> sweepTerms_;
+    std::vector<std::size_t> sweepStart_;
 
     GainParams params_;
     int columns_ = 0;

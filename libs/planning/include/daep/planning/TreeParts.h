@@ -125,6 +125,9 @@ public:
     /** The unknown volume per azimuth column at p (GainEvaluator::columns); counted. */
     std::vector<double> rayCastColumns(const Eigen::Vector3d& p,
                                        const std::vector<BodyOccluder>* occluders);
+    /** The columns at p without and with `occluders`, from one march; counted as two. */
+    GainEvaluator::ColumnViews rayCastColumnsOpenAndOccluded(
+        const Eigen::Vector3d& p, const std::vector<BodyOccluder>& occluders);
     /** Caches the view at p when its gain passes the cache threshold. */
     void remember(const Eigen::Vector3d& p, const YawGain& view);
     const GainEvaluator& evaluator() const { return gain_; }
