@@ -166,6 +166,46 @@ TEST(ExplorationMap, KnownCellsMatchBruteForceLeafCount) {
     EXPECT_LE(map.coverage(), 1.0);
 }
 
+TEST(ExplorationMap, InsertionEqualsOctomapsOwnDiscreteUpdate) {
+    // OctoMap's insertPointCloud with discretize: the reference our walk of each ray (and the
+    // marks that replace its key sets) must reproduce, leaf for leaf and log-odds for log-odds,
+    // with rays that leave the dense grid and end points beyond the range.
+    const MapParams params;
+    const Aabb box = makeBox({-1.3, -2.0, 0.0}, {4.1, 3.3, 2.5});
+    ExplorationMap map(params, box);
+    octomap::OcTree reference(params.resolution);
+    reference.setProbHit(params.probHit);
+    reference.setProbMiss(params.probMiss);
+    reference.setClampingThresMin(params.clampMin);
+    reference.setClampingThresMax(params.clampMax);
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<double> u(0.0, 1.0), spread(-8.0, 8.0);
+    for (int c = 0; c < 30; ++c) {
+        const Eigen::Vector3d origin = box.min + (box.max - box.min).cwiseProduct(
+                                                     Eigen::Vector3d(u(rng), u(rng), u(rng)));
+        std::vector<Eigen::Vector3f> pts;
+        octomap::Pointcloud cloud;
+        for (int i = 0; i < 400; ++i) {
+            const Eigen::Vector3f p =
+                (origin + Eigen::Vector3d(spread(rng), spread(rng), 0.3 * spread(rng)))
+                    .cast<float>();
+            pts.push_back(p);
+            cloud.push_back(p.x(), p.y(), p.z());
+        }
+        map.insertPointCloud(origin, pts);
+        const octomap::point3d o(float(origin.x()), float(origin.y()), float(origin.z()));
+        reference.insertPointCloud(cloud, o, params.maxRange, false, true);
+    }
+    std::size_t leaves = 0;
+    for (auto it = reference.begin_leafs(); it != reference.end_leafs(); ++it, ++leaves) {
+        const octomap::OcTreeNode* ours = map.octree().search(it.getKey(), it.getDepth());
+        ASSERT_NE(ours, nullptr) << it.getCoordinate();
+        ASSERT_EQ(ours->getLogOdds(), it->getLogOdds()) << it.getCoordinate();
+    }
+    EXPECT_EQ(map.octree().getNumLeafNodes(), leaves);
+    EXPECT_GT(leaves, 5000u);
+}
+
 TEST(ExplorationMap, OctreeStaysPrunedAndAgreesWithDenseGrid) {
     MapParams p;
     p.maxRange = 3.2;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "MapImpl.h"
@@ -110,25 +111,68 @@ bool ExplorationMap::Impl::keyInBox(const octomap::OcTreeKey& key) const {
 
 bool ExplorationMap::Impl::mark(const octomap::OcTreeKey& key, std::uint8_t m) {
     const std::int64_t i = gridIndex(key);
-    if (i < 0) {
-        octomap::KeySet& outside = m == kFreeNow       ? freeOutside
-                                   : m == kOccupiedNow ? occupiedOutside
-                                                       : endsOutside;
-        return outside.insert(key).second;
-    }
-    std::uint8_t& f = flags[std::size_t(i)];
-    if (f & m)
-        return false;
-    if (!(f & kFrameMarks))
-        marked.push_back(i);
-    f |= m;
-    return true;
+    return i >= 0 ? markCell(i, m) : markOutside(key, m);
 }
 
+bool ExplorationMap::Impl::markOutside(const octomap::OcTreeKey& key, std::uint8_t m) {
+    octomap::KeySet& outside = m == kFreeNow       ? freeOutside
+                               : m == kOccupiedNow ? occupiedOutside
+                                                   : endsOutside;
+    return outside.insert(key).second;
+}
+
+/**
+ * Marks free the cells OctoMap's computeRayKeys lists for origin-end (the traversal of Amanatides
+ * and Woo with OctoMap's own arithmetic, so the very same cells: the first, then each one
+ * entered before the end's cell or the end's distance), as they are walked rather than
+ * collected, with the dense index stepped along.
+ */
 void ExplorationMap::Impl::markRay(const octomap::point3d& origin, const octomap::point3d& end) {
-    if (tree.computeRayKeys(origin, end, ray))
-        for (const octomap::OcTreeKey& key : ray)
-            mark(key, kFreeNow);
+    octomap::OcTreeKey key, last;
+    if (!tree.coordToKeyChecked(origin, key) || !tree.coordToKeyChecked(end, last) || key == last)
+        return;
+    octomap::point3d dir = end - origin;
+    const float length = float(dir.norm());
+    dir /= length;
+    const double res = tree.getResolution();
+    constexpr double kNever = std::numeric_limits<double>::max();
+    std::array<int, 3> step{};
+    std::array<double, 3> tNext{kNever, kNever, kNever}, tDelta{kNever, kNever, kNever};
+    for (std::size_t a = 0; a < 3; ++a) {
+        step[a] = dir(unsigned(a)) > 0.0f ? 1 : (dir(unsigned(a)) < 0.0f ? -1 : 0);
+        if (step[a] == 0)
+            continue;
+        double border = tree.keyToCoord(key[a]);
+        border += float(step[a] * res * 0.5);
+        tNext[a] = (border - origin(unsigned(a))) / dir(unsigned(a));
+        tDelta[a] = res / std::fabs(dir(unsigned(a)));
+    }
+    const std::array<std::int64_t, 3> stride{1, dims[0], std::int64_t(dims[0]) * dims[1]};
+    std::array<int, 3> cell{};  // key - gridMin
+    for (std::size_t a = 0; a < 3; ++a)
+        cell[a] = int(key[a]) - int(gridMin[a]);
+    const auto onGrid = [&] {
+        return cell[0] >= 0 && cell[0] < dims[0] && cell[1] >= 0 && cell[1] < dims[1] &&
+               cell[2] >= 0 && cell[2] < dims[2];
+    };
+    bool inGrid = onGrid();
+    std::int64_t index = inGrid ? cell[0] + stride[1] * cell[1] + stride[2] * cell[2] : -1;
+    for (;;) {
+        inGrid ? markCell(index, kFreeNow) : markOutside(key, kFreeNow);
+        const std::size_t a =
+            tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
+        key[a] = octomap::key_type(key[a] + step[a]);
+        tNext[a] += tDelta[a];
+        if (key == last || std::min(std::min(tNext[0], tNext[1]), tNext[2]) > length)
+            return;
+        cell[a] += step[a];
+        if (inGrid && cell[a] >= 0 && cell[a] < dims[a]) {
+            index += step[a] * stride[a];
+        } else {
+            inGrid = onGrid();
+            index = inGrid ? cell[0] + stride[1] * cell[1] + stride[2] * cell[2] : -1;
+        }
+    }
 }
 
 bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) {

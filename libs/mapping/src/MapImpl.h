@@ -33,9 +33,8 @@ struct ExplorationMap::Impl {
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
 
-    octomap::Pointcloud cloud;   ///< scratch buffers reused between insertions
-    octomap::KeySet personKeys;  ///< cells of returns on people: cleared up to, not marked
-    octomap::KeyRay ray;
+    octomap::Pointcloud cloud;         ///< scratch buffers reused between insertions
+    octomap::KeySet personKeys;        ///< cells of returns on people: cleared up to, not marked
     std::vector<std::int64_t> marked;  ///< dense cells with frame marks
     /// The frame's marks on cells outside the dense grid, one set per mark.
     octomap::KeySet freeOutside, occupiedOutside, endsOutside;
@@ -109,6 +108,17 @@ struct ExplorationMap::Impl {
 
     /** Gives a cell a frame mark; false when it had that mark already. */
     bool mark(const octomap::OcTreeKey& key, std::uint8_t mark);
+    bool markOutside(const octomap::OcTreeKey& key, std::uint8_t mark);
+    /** mark() of the dense cell i. */
+    bool markCell(std::int64_t i, std::uint8_t m) {
+        std::uint8_t& f = flags[std::size_t(i)];
+        if (f & m)
+            return false;
+        if (!(f & kFrameMarks))
+            marked.push_back(i);
+        f |= m;
+        return true;
+    }
     void markRay(const octomap::point3d& origin, const octomap::point3d& end);
     /** The map update of one marked cell; true when it went from unknown to known in the box. */
     bool applyUpdate(const octomap::OcTreeKey& key, bool hit);

@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "MapImpl.h"
 
@@ -104,6 +105,10 @@ bool ExplorationMap::isBoxFree(const Eigen::Vector3d& center,
  * True when every cell whose box comes within `radius` of segment a-b satisfies `allowed`.
  * Walks the rows of cells along x; each row only scans the x range the capsule can reach, and
  * the exact cell-to-segment distance is computed only for cells that are not allowed.
+ *
+ * The last cell that blocked a capsule is tried first: a planner's samples that fail, fail
+ * mostly on the same obstacle (a tree stuck beside it tries thousands). It is tried only when
+ * the scan would reach it, so the answer is the scan's.
  */
 template <typename Allowed>
 bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -117,30 +122,61 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
         return false;
     }
     const double r2 = r * r;
+    // The x keys the scan visits in row (y, z); false when the capsule misses the row.
+    const auto layerSpan = [&](int z) {
+        const double z0 = m.cellLow(octomap::key_type(z));
+        return paramsInside(a.z(), d.z(), z0 - r, z0 + res + r);
+    };
+    const auto rowSpan = [&](const Interval& tz, int y, int& xFirst, int& xLast, bool& offTree) {
+        const double y0 = m.cellLow(octomap::key_type(y));
+        const Interval ty = paramsInside(a.y(), d.y(), y0 - r, y0 + res + r);
+        const Interval t{std::max(tz.lo, ty.lo), std::min(tz.hi, ty.hi)};
+        if (t.empty())
+            return false;
+        const double xa = a.x() + t.lo * d.x(), xb = a.x() + t.hi * d.x();
+        octomap::key_type x0, x1;
+        if (!m.axisKeyOf(std::min(xa, xb) - r, x0) || !m.axisKeyOf(std::max(xa, xb) + r, x1)) {
+            offTree = true;
+            return false;
+        }
+        xFirst = std::max<int>(x0, lo[0]);
+        xLast = std::min<int>(x1, hi[0]);
+        return xFirst <= xLast;
+    };
+    const auto blocks = [&](const octomap::OcTreeKey& k, std::int64_t i) {
+        const CellState state = i >= 0 ? CellState(m.cells[std::size_t(i)]) : m.stateAt(k);
+        if (allowed(state) && !(m.guardGrazed && (i < 0 || (m.flags[std::size_t(i)] & kEverHit)) &&
+                                m.grazedSurface(k)))
+            return false;
+        const Eigen::Vector3d cellLo(m.cellLow(k[0]), m.cellLow(k[1]), m.cellLow(k[2]));
+        return segmentBoxDistance2(a, d, cellLo, cellLo.array() + res) <= r2;
+    };
+
+    thread_local std::optional<octomap::OcTreeKey> lastBlocker;  // one per predicate
+    if (lastBlocker) {
+        const octomap::OcTreeKey& k = *lastBlocker;
+        int xFirst = 0, xLast = -1;
+        bool offTree = false;
+        if (k[1] >= lo[1] && k[1] <= hi[1] && k[2] >= lo[2] && k[2] <= hi[2] &&
+            rowSpan(layerSpan(k[2]), k[1], xFirst, xLast, offTree) && k[0] >= xFirst &&
+            k[0] <= xLast && blocks(k, m.gridIndex(k)))
+            return false;
+    }
     octomap::OcTreeKey k;
     for (int z = lo[2]; z <= hi[2]; ++z) {
         k[2] = octomap::key_type(z);
-        const double z0 = m.cellLow(k[2]);
-        const Interval tz = paramsInside(a.z(), d.z(), z0 - r, z0 + res + r);
-        if (tz.empty()) {
+        const Interval tz = layerSpan(z);
+        if (tz.empty())
             continue;
-        }
         for (int y = lo[1]; y <= hi[1]; ++y) {
             k[1] = octomap::key_type(y);
-            const double y0 = m.cellLow(k[1]);
-            const Interval ty = paramsInside(a.y(), d.y(), y0 - r, y0 + res + r);
-            const Interval t{std::max(tz.lo, ty.lo), std::min(tz.hi, ty.hi)};
-            if (t.empty()) {
+            int xFirst = 0, xLast = -1;
+            bool offTree = false;
+            if (!rowSpan(tz, y, xFirst, xLast, offTree)) {
+                if (offTree)
+                    return false;
                 continue;
             }
-            const double xa = a.x() + t.lo * d.x(), xb = a.x() + t.hi * d.x();
-            octomap::key_type x0, x1;
-            if (!m.axisKeyOf(std::min(xa, xb) - r, x0) || !m.axisKeyOf(std::max(xa, xb) + r, x1)) {
-                return false;
-            }
-            const int xFirst = std::max<int>(x0, lo[0]), xLast = std::min<int>(x1, hi[0]);
-            if (xFirst > xLast)
-                continue;
             // Dense indices along the row when all of it lies on the grid.
             k[0] = octomap::key_type(xLast);
             const bool rowOnGrid = m.gridIndex(k) >= 0;
@@ -148,15 +184,8 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
             const std::int64_t rowStart = rowOnGrid ? m.gridIndex(k) : -1;
             for (int x = xFirst; x <= xLast; ++x) {
                 k[0] = octomap::key_type(x);
-                const std::int64_t i = rowOnGrid ? rowStart + (x - xFirst) : -1;
-                const CellState state = i >= 0 ? CellState(m.cells[std::size_t(i)]) : m.stateAt(k);
-                if (allowed(state) &&
-                    !(m.guardGrazed && (i < 0 || (m.flags[std::size_t(i)] & kEverHit)) &&
-                      m.grazedSurface(k))) {
-                    continue;
-                }
-                const Eigen::Vector3d cellLo(m.cellLow(k[0]), y0, z0);
-                if (segmentBoxDistance2(a, d, cellLo, cellLo.array() + res) <= r2) {
+                if (blocks(k, rowOnGrid ? rowStart + (x - xFirst) : -1)) {
+                    lastBlocker = k;
                     return false;
                 }
             }
