@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "MapImpl.h"
+#include "OctreeKeys.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 
@@ -45,6 +46,7 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
     tree.setProbMiss(params.probMiss);
     tree.setClampingThresMin(params.clampMin);
     tree.setClampingThresMax(params.clampMax);
+    pointIndex.scale = 1.0 / tree.getResolution();  // axisKeyOf's factor, as OctoMap's own
 
     const Eigen::Vector3d lo = box.min.array() - kGridMargin;
     const Eigen::Vector3d hi = box.max.array() + kGridMargin;
@@ -63,7 +65,6 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
             inBox[a][std::size_t(i)] = c >= box.min[a] && c < box.max[a];
         }
     }
-    pointIndex.scale = 1.0 / tree.getResolution();
     pointIndex.dims = dims;
     const int keyOfZero = tree.coordToKey(0.0);
     for (std::size_t a = 0; a < 3; ++a) {
@@ -81,10 +82,11 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
 }
 
 bool ExplorationMap::Impl::axisKeyOf(double c, octomap::key_type& k) const {
-    // OctoMap casts c / resolution to int unchecked (undefined beyond int, found by UBSan);
-    // keys span +-2^15 cells, so anything farther is outside the tree anyway.
-    return std::isfinite(c) && std::abs(c) < 65536.0 * tree.getResolution() &&
-           tree.coordToKeyChecked(c, k);
+    return octreeAxisKey(pointIndex.scale, c, k);
+}
+
+bool ExplorationMap::Impl::keyOf(const octomap::point3d& p, octomap::OcTreeKey& key) const {
+    return axisKeyOf(p.x(), key[0]) && axisKeyOf(p.y(), key[1]) && axisKeyOf(p.z(), key[2]);
 }
 
 bool ExplorationMap::Impl::keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const {
@@ -129,7 +131,7 @@ bool ExplorationMap::Impl::markOutside(const octomap::OcTreeKey& key, std::uint8
  */
 void ExplorationMap::Impl::markRay(const octomap::point3d& origin, const octomap::point3d& end) {
     octomap::OcTreeKey key, last;
-    if (!tree.coordToKeyChecked(origin, key) || !tree.coordToKeyChecked(end, last) || key == last)
+    if (!keyOf(origin, key) || !keyOf(end, last) || key == last)
         return;
     octomap::point3d dir = end - origin;
     const float length = float(dir.norm());
@@ -209,7 +211,7 @@ bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) 
 std::size_t ExplorationMap::Impl::integrate(const octomap::point3d& origin, double maxRange) {
     for (const octomap::point3d& point : cloud) {
         octomap::OcTreeKey key;
-        if (!tree.coordToKeyChecked(point, key) || !mark(key, kEndNow))
+        if (!keyOf(point, key) || !mark(key, kEndNow))
             continue;
         const octomap::point3d end = tree.keyToCoord(key);
         if ((end - origin).norm() <= maxRange) {

@@ -89,7 +89,7 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
         previousRow = row;
         previousCol = col;
         octomap::OcTreeKey key;
-        if (!m.tree.coordToKeyChecked(octomap::point3d(p.x(), p.y(), p.z()), key)) {
+        if (!m.keyOf(octomap::point3d(p.x(), p.y(), p.z()), key)) {
             previous = kNoKey;
             return;
         }

@@ -42,6 +42,8 @@ struct ExplorationMap::Impl {
 
     /** Key of the cell containing p; false if p is not finite or outside the tree. */
     bool keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const;
+    bool keyOf(const octomap::point3d& p, octomap::OcTreeKey& key) const;
+    /** OctoMap's coordToKeyChecked, bit for bit, and faster (octreeAxisKey). */
     bool axisKeyOf(double c, octomap::key_type& k) const;
 
     /// Point to dense index; its scale is the octree's private resolution_factor.
