@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "MapImpl.h"
-#include "OctreeKeys.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
 
@@ -79,18 +78,6 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
     }
     cells.assign(std::size_t(total), std::uint8_t(CellState::Unknown));
     flags.assign(std::size_t(total), 0);
-}
-
-bool ExplorationMap::Impl::axisKeyOf(double c, octomap::key_type& k) const {
-    return octreeAxisKey(pointIndex.scale, c, k);
-}
-
-bool ExplorationMap::Impl::keyOf(const octomap::point3d& p, octomap::OcTreeKey& key) const {
-    return axisKeyOf(p.x(), key[0]) && axisKeyOf(p.y(), key[1]) && axisKeyOf(p.z(), key[2]);
-}
-
-bool ExplorationMap::Impl::keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const {
-    return axisKeyOf(p.x(), key[0]) && axisKeyOf(p.y(), key[1]) && axisKeyOf(p.z(), key[2]);
 }
 
 CellState ExplorationMap::Impl::treeState(const octomap::OcTreeKey& key) const {

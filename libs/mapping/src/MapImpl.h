@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "OctreeKeys.h"
 #include "daep/mapping/DenseGridIndex.h"
 #include "daep/mapping/ExplorationMap.h"
 
@@ -41,10 +42,16 @@ struct ExplorationMap::Impl {
     std::vector<std::uint64_t> rowAbove;  ///< packed keys of the previous image row
 
     /** Key of the cell containing p; false if p is not finite or outside the tree. */
-    bool keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const;
-    bool keyOf(const octomap::point3d& p, octomap::OcTreeKey& key) const;
+    bool keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const {
+        return axisKeyOf(p.x(), key[0]) && axisKeyOf(p.y(), key[1]) && axisKeyOf(p.z(), key[2]);
+    }
+    bool keyOf(const octomap::point3d& p, octomap::OcTreeKey& key) const {
+        return axisKeyOf(p.x(), key[0]) && axisKeyOf(p.y(), key[1]) && axisKeyOf(p.z(), key[2]);
+    }
     /** OctoMap's coordToKeyChecked, bit for bit, and faster (octreeAxisKey). */
-    bool axisKeyOf(double c, octomap::key_type& k) const;
+    bool axisKeyOf(double c, octomap::key_type& k) const {
+        return octreeAxisKey(pointIndex.scale, c, k);
+    }
 
     /// Point to dense index; its scale is the octree's private resolution_factor.
     DenseGridIndex pointIndex;

@@ -199,6 +199,19 @@ bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key) const {
     if (i < 0 || !(flags[std::size_t(i)] & kEverHit) ||
         cells[std::size_t(i)] != std::uint8_t(CellState::Free))
         return false;
+    bool interior = true;  // all six neighbours on the grid: read them off it
+    for (int axis = 0; axis < 3; ++axis) {
+        const int c = int(key[axis]) - int(gridMin[axis]);
+        interior = interior && c > 0 && c + 1 < dims[axis];
+    }
+    if (interior) {
+        const std::int64_t plane = std::int64_t(dims[0]) * dims[1];
+        for (const std::int64_t step : {std::int64_t(1), std::int64_t(dims[0]), plane})
+            if (cells[std::size_t(i - step)] != std::uint8_t(CellState::Free) ||
+                cells[std::size_t(i + step)] != std::uint8_t(CellState::Free))
+                return true;
+        return false;
+    }
     for (int axis = 0; axis < 3; ++axis) {
         for (const int step : {-1, 1}) {
             octomap::OcTreeKey n = key;
