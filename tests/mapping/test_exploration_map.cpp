@@ -181,8 +181,8 @@ TEST(ExplorationMap, InsertionEqualsOctomapsOwnDiscreteUpdate) {
     std::mt19937 rng(99);
     std::uniform_real_distribution<double> u(0.0, 1.0), spread(-8.0, 8.0);
     for (int c = 0; c < 30; ++c) {
-        const Eigen::Vector3d origin = box.min + (box.max - box.min).cwiseProduct(
-                                                     Eigen::Vector3d(u(rng), u(rng), u(rng)));
+        const Eigen::Vector3d origin =
+            box.min + (box.max - box.min).cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
         std::vector<Eigen::Vector3f> pts;
         octomap::Pointcloud cloud;
         for (int i = 0; i < 400; ++i) {

@@ -89,6 +89,38 @@ TEST_F(FreeBlockMap, GrazedSurfaceBesideAnOccupiedCellBlocksTheCapsule) {
     EXPECT_TRUE(map_.isSegmentFree(from, to, 0.3));
 }
 
+TEST_F(FreeBlockMap, ACapsuleAskedAgainSeesWhatChangedInItsRowsAndBesideThem) {
+    // Each answer below follows one that passed over the same rows: what the map learnt of
+    // those rows must not outlive a change in them or in the rows beside them.
+    const Eigen::Vector3d from(1.9, 0.55, 0.5), to(2.3, 0.55, 0.5);  // rows y 1..4 within 0.3
+    ASSERT_TRUE(map_.isSegmentFree(from, to, 0.3));
+    test::occupy(map_, cellCentre({11, 3, 2}, kRes));  // on the segment's row band
+    EXPECT_FALSE(map_.isSegmentFree(from, to, 0.3));
+    for (int i = 0; i < 6; ++i)
+        test::freeRow(map_, {0, 3, 2});
+    ASSERT_TRUE(map_.isSegmentFree(from, to, 0.3));
+    // A, hit once then seen through, is free; it becomes a grazed surface when B beside it
+    // (in the next row, out of the capsule's reach) turns occupied.
+    const Eigen::Vector3i a(10, 4, 2), b(10, 5, 2);  // 0.25 m and 0.45 m from the capsule
+    test::occupy(map_, cellCentre(a, kRes));
+    for (int i = 0; i < 6; ++i)
+        test::freeRow(map_, {0, a.y(), a.z()});
+    ASSERT_TRUE(map_.isSegmentFree(from, to, 0.3));
+    for (int i = 0; i < 3; ++i)
+        test::occupy(map_, cellCentre(b, kRes));
+    EXPECT_FALSE(map_.isSegmentFree(from, to, 0.3));
+    // The same with B in the layer above A's row.
+    const Eigen::Vector3d low(1.9, 0.5, 0.35), lowEnd(2.3, 0.5, 0.35);
+    const Eigen::Vector3i a2(10, 2, 3), b2(10, 2, 4);  // 0.25 m and 0.45 m above the axis
+    test::occupy(map_, cellCentre(a2, kRes));
+    for (int i = 0; i < 6; ++i)
+        test::freeRow(map_, {0, a2.y(), a2.z()});
+    ASSERT_TRUE(map_.isSegmentFree(low, lowEnd, 0.3));
+    for (int i = 0; i < 3; ++i)
+        test::occupy(map_, cellCentre(b2, kRes));
+    EXPECT_FALSE(map_.isSegmentFree(low, lowEnd, 0.3));
+}
+
 TEST_F(FreeBlockMap, GrazedWallFaceInFrontOfAnUnknownInsideBlocksTheCapsule) {
     // A wall's face 10 cm into cell A; the wall's inside (y index 10 on) was never seen: it
     // lies beyond the free block. A was hit once, then cleared by rays along the face.
@@ -252,6 +284,48 @@ TEST_F(RandomMap, SegmentQueriesNeverMissABlockingCell) {
     }
     EXPECT_GT(freeAnswers, 10);  // both outcomes were exercised
     EXPECT_GT(blockedAnswers, 10);
+}
+
+TEST(SegmentQueries, AnswersKeepUpWithTheMapTheyWereAskedOfBefore) {
+    // Two maps given the same frames; one is asked between frames (what it learns of its rows
+    // must follow every change, grazed surfaces included), the other only at the end.
+    MapParams params;
+    params.maxRange = 3.0;
+    Aabb box;
+    box.min = {0, 0, 0};
+    box.max = {6, 4, 2};
+    ExplorationMap asked(params, box), fresh(params, box);
+    std::mt19937 rng(77);
+    std::uniform_real_distribution<double> ux(0.0, 6.0), uy(0.0, 4.0), uz(0.0, 2.0), ur(0.0, 0.5);
+    const auto point = [&] { return Eigen::Vector3d(ux(rng), uy(rng), uz(rng)); };
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+    for (int i = 0; i < 300; ++i) {
+        const Eigen::Vector3d a = point();
+        segments.push_back({a, a + 0.3 * (point() - a)});
+    }
+    int blocked = 0, passed = 0;
+    for (int frame = 0; frame < 40; ++frame) {
+        const Eigen::Vector3d origin = point();
+        std::vector<Eigen::Vector3f> hits;
+        for (int i = 0; i < 200; ++i)  // end points in the box: walls, and later rays through
+            hits.push_back(point().cast<float>());
+        asked.insertPointCloud(origin, hits);
+        fresh.insertPointCloud(origin, hits);
+        for (int i = 0; i < 40; ++i) {
+            const auto& [a, b] = segments[std::size_t((frame * 40 + i) % 300)];
+            const bool free = asked.isSegmentFree(a, b, ur(rng));
+            blocked += !free;
+            passed += free;
+        }
+    }
+    EXPECT_GT(blocked, 50);  // both answers were cached along the way
+    EXPECT_GT(passed, 50);
+    for (const double r : {0.0, 0.15, 0.3}) {
+        for (const auto& [a, b] : segments) {
+            ASSERT_EQ(asked.isSegmentFree(a, b, r), fresh.isSegmentFree(a, b, r))
+                << a.transpose() << " | " << b.transpose() << " r " << r;
+        }
+    }
 }
 
 TEST_F(RandomMap, CastRayStopsAtEntryOfFirstOccupiedCell) {

@@ -78,6 +78,10 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
     }
     cells.assign(std::size_t(total), std::uint8_t(CellState::Unknown));
     flags.assign(std::size_t(total), 0);
+    const std::size_t rows = std::size_t(dims[1]) * std::size_t(dims[2]);
+    passWords = (dims[0] + 63) / 64;
+    passBits.assign(rows * std::size_t(passWords), 0);
+    passStale.assign(rows, 1);
 }
 
 CellState ExplorationMap::Impl::treeState(const octomap::OcTreeKey& key) const {
@@ -177,15 +181,18 @@ bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) 
     if (i < 0)
         return false;
     std::uint8_t& cell = cells[std::size_t(i)];
+    std::uint8_t& f = flags[std::size_t(i)];
+    const std::uint8_t before = cell, hitBefore = f & kEverHit;
     const bool newlyKnown = cell == std::uint8_t(CellState::Unknown) && keyInBox(key);
     cell = std::uint8_t(tree.isNodeOccupied(node) ? CellState::Occupied : CellState::Free);
-    std::uint8_t& f = flags[std::size_t(i)];
     f &= std::uint8_t(~(kClampedFree | kClampedOccupied));
     if (node->getLogOdds() <= tree.getClampingThresMinLog())
         f |= kClampedFree;
     else if (node->getLogOdds() >= tree.getClampingThresMaxLog())
         f |= kClampedOccupied;
     f |= std::uint8_t(hit ? kEverHit : 0);
+    if (cell != before || (f & kEverHit) != hitBefore)
+        passCellChanged(i);
     return newlyKnown;
 }
 
@@ -242,7 +249,7 @@ ExplorationMap::ExplorationMap(const MapParams& params, const Aabb& explorationB
 ExplorationMap::~ExplorationMap() = default;
 
 void ExplorationMap::setPeopleMapped(bool mapped) {
-    impl_->guardGrazed = !mapped;
+    impl_->setGuardGrazed(!mapped);
 }
 
 void ExplorationMap::insertPointCloud(const Eigen::Vector3d& origin,

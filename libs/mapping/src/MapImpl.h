@@ -96,6 +96,26 @@ struct ExplorationMap::Impl {
      */
     bool grazedSurface(const octomap::OcTreeKey& key) const;
     bool guardGrazed = true;  ///< no person enters the map (setPeopleMapped)
+    void setGuardGrazed(bool guard);
+
+    /**
+     * Per row of the grid (y + dims[1] * z), one bit per cell along x: whether the cell
+     * passes isSegmentFree's cell test (free, and not a guarded grazed surface), so that a
+     * capsule skips the passing cells of its rows a word at a time. Rows on the grid's outer
+     * shell are not kept (their cells' neighbours lie in the octree), nor are the first and
+     * last cell of a row (their bits stay 0, so they are tested one by one). A row is rebuilt
+     * when it is asked for after a cell in it or beside it changed.
+     */
+    mutable std::vector<std::uint64_t> passBits;
+    mutable std::vector<std::uint8_t> passStale;  ///< per row: rebuild before use
+    int passWords = 0;                            ///< 64-bit words per row
+    bool keepsPassBits(int y, int z) const {
+        return y > 0 && y + 1 < dims[1] && z > 0 && z + 1 < dims[2];
+    }
+    /** The fresh pass bits of row (y, z), grid coordinates; keepsPassBits(y, z) must hold. */
+    const std::uint64_t* passRow(int y, int z) const;
+    /** A dense cell's state or hit flag changed: the rows its test, or its neighbours', read. */
+    void passCellChanged(std::int64_t i);
 
     bool keyInBox(const octomap::OcTreeKey& key) const;
 
@@ -104,10 +124,12 @@ struct ExplorationMap::Impl {
         return tree.keyToCoord(k) - 0.5 * tree.getResolution();
     }
 
-    /** True when every cell whose box is within radius of segment a-b satisfies allowed. */
-    template <typename Allowed>
-    bool capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius,
-                             Allowed allowed) const;
+    /** Which cells a capsule may touch: free ones (isSegmentFree), or any not occupied. */
+    enum class Passable { Free, NotOccupied };
+    /** True when every cell whose box is within radius of segment a-b is passable. */
+    template <Passable P>
+    bool capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                             double radius) const;
 
     /**
      * Integrates a cloud (world frame) seen from origin. Returns the number of cells inside the

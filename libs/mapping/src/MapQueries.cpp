@@ -75,6 +75,20 @@ double segmentBoxDistance2(const Eigen::Vector3d& a, const Eigen::Vector3d& d,
     return best;
 }
 
+/** The first x in [from, to] whose bit is 0, else to + 1. */
+int firstClearBit(const std::uint64_t* bits, int from, int to) {
+    for (int w = from >> 6; (w << 6) <= to; ++w) {
+        std::uint64_t clear = ~bits[w];
+        if ((w << 6) < from)
+            clear &= ~std::uint64_t(0) << (from & 63);
+        if (clear != 0) {
+            const int x = (w << 6) + __builtin_ctzll(clear);
+            return x <= to ? x : to + 1;
+        }
+    }
+    return to + 1;
+}
+
 }  // namespace
 
 bool ExplorationMap::isBoxFree(const Eigen::Vector3d& center,
@@ -101,19 +115,64 @@ bool ExplorationMap::isBoxFree(const Eigen::Vector3d& center,
     return true;
 }
 
+const std::uint64_t* ExplorationMap::Impl::passRow(int y, int z) const {
+    const std::size_t row = std::size_t(y) + std::size_t(dims[1]) * std::size_t(z);
+    std::uint64_t* bits = passBits.data() + row * std::size_t(passWords);
+    if (!passStale[row])
+        return bits;
+    std::fill(bits, bits + passWords, 0);
+    const std::int64_t first = std::int64_t(dims[0]) * std::int64_t(row);
+    octomap::OcTreeKey k(0, octomap::key_type(gridMin[1] + y), octomap::key_type(gridMin[2] + z));
+    for (int x = 1; x + 1 < dims[0]; ++x) {
+        const std::size_t i = std::size_t(first + x);
+        if (cells[i] != std::uint8_t(CellState::Free))
+            continue;
+        k[0] = octomap::key_type(gridMin[0] + x);
+        if (guardGrazed && (flags[i] & kEverHit) && grazedSurface(k))
+            continue;
+        bits[x >> 6] |= std::uint64_t(1) << (x & 63);
+    }
+    passStale[row] = 0;
+    return bits;
+}
+
+void ExplorationMap::Impl::passCellChanged(std::int64_t i) {
+    const std::int64_t row = i / dims[0];
+    const int y = int(row % dims[1]), z = int(row / dims[1]);
+    passStale[std::size_t(row)] = 1;
+    if (y > 0)
+        passStale[std::size_t(row - 1)] = 1;
+    if (y + 1 < dims[1])
+        passStale[std::size_t(row + 1)] = 1;
+    if (z > 0)
+        passStale[std::size_t(row - dims[1])] = 1;
+    if (z + 1 < dims[2])
+        passStale[std::size_t(row + dims[1])] = 1;
+}
+
+void ExplorationMap::Impl::setGuardGrazed(bool guard) {
+    if (guard != guardGrazed)
+        std::fill(passStale.begin(), passStale.end(), 1);
+    guardGrazed = guard;
+}
+
 /**
- * True when every cell whose box comes within `radius` of segment a-b satisfies `allowed`.
+ * True when every cell whose box comes within `radius` of segment a-b is passable.
  * Walks the rows of cells along x; each row only scans the x range the capsule can reach, and
- * the exact cell-to-segment distance is computed only for cells that are not allowed.
+ * the exact cell-to-segment distance is computed only for cells that are not passable (for
+ * isSegmentFree, the passing cells are skipped a word of pass bits at a time).
  *
  * The last cell that blocked a capsule is tried first: a planner's samples that fail, fail
  * mostly on the same obstacle (a tree stuck beside it tries thousands). It is tried only when
  * the scan would reach it, so the answer is the scan's.
  */
-template <typename Allowed>
+template <ExplorationMap::Impl::Passable P>
 bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                               double radius, Allowed allowed) const {
+                                               double radius) const {
     const Impl& m = *this;
+    const auto allowed = [](CellState s) {
+        return P == Passable::Free ? s == CellState::Free : s != CellState::Occupied;
+    };
     const double r = std::max(0.0, radius);
     const double res = m.tree.getResolution();
     const Eigen::Vector3d d = b - a;
@@ -152,7 +211,7 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
         return segmentBoxDistance2(a, d, cellLo, cellLo.array() + res) <= r2;
     };
 
-    thread_local std::optional<octomap::OcTreeKey> lastBlocker;  // one per predicate
+    thread_local std::optional<octomap::OcTreeKey> lastBlocker;  // one per Passable
     if (lastBlocker) {
         const octomap::OcTreeKey& k = *lastBlocker;
         int xFirst = 0, xLast = -1;
@@ -182,6 +241,20 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
             const bool rowOnGrid = m.gridIndex(k) >= 0;
             k[0] = octomap::key_type(xFirst);
             const std::int64_t rowStart = rowOnGrid ? m.gridIndex(k) : -1;
+            const int gy = y - int(m.gridMin[1]), gz = z - int(m.gridMin[2]);
+            if (P == Passable::Free && rowOnGrid && m.keepsPassBits(gy, gz)) {
+                const std::uint64_t* bits = m.passRow(gy, gz);
+                const int x0 = xFirst - int(m.gridMin[0]), x1 = xLast - int(m.gridMin[0]);
+                for (int x = firstClearBit(bits, x0, x1); x <= x1;
+                     x = firstClearBit(bits, x + 1, x1)) {
+                    k[0] = octomap::key_type(x + int(m.gridMin[0]));
+                    if (blocks(k, rowStart + (x - x0))) {
+                        lastBlocker = k;
+                        return false;
+                    }
+                }
+                continue;
+            }
             for (int x = xFirst; x <= xLast; ++x) {
                 k[0] = octomap::key_type(x);
                 if (blocks(k, rowOnGrid ? rowStart + (x - xFirst) : -1)) {
@@ -225,14 +298,12 @@ bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key) const {
 
 bool ExplorationMap::isSegmentFree(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                    double radius) const {
-    return impl_->capsuleCellsAllowed(a, b, radius,
-                                      [](CellState s) { return s == CellState::Free; });
+    return impl_->capsuleCellsAllowed<Impl::Passable::Free>(a, b, radius);
 }
 
 bool ExplorationMap::isSegmentFreeOrUnknown(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                             double radius) const {
-    return impl_->capsuleCellsAllowed(a, b, radius,
-                                      [](CellState s) { return s != CellState::Occupied; });
+    return impl_->capsuleCellsAllowed<Impl::Passable::NotOccupied>(a, b, radius);
 }
 
 double ExplorationMap::castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& unitDir,
