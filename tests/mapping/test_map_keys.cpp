@@ -18,8 +18,9 @@ void expectSameKey(const octomap::OcTree& tree, double c) {
     // Beyond int OctoMap's own conversion is undefined: compared within it only.
     const bool inTree = std::isfinite(c) && std::abs(c) < 1e6 && tree.coordToKeyChecked(c, theirs);
     ASSERT_EQ(octreeAxisKey(1.0 / tree.getResolution(), c, ours), inTree) << c;
-    if (inTree)
+    if (inTree) {
         ASSERT_EQ(ours, theirs) << c;
+    }
 }
 
 TEST(OctreeAxisKey, IsOctomapsKeyOnAndOffCellBoundaries) {

@@ -38,6 +38,13 @@ protected:
     ExplorationMap map_;
 };
 
+/** A cell a ray ended in once, then seen through along its row: free, with the hit kept. */
+void hitThenSeeThrough(ExplorationMap& map, const Eigen::Vector3i& cell) {
+    test::occupy(map, cellCentre(cell, kRes));
+    for (int i = 0; i < 6; ++i)
+        test::freeRow(map, {0, cell.y(), cell.z()});
+}
+
 TEST_F(FreeBlockMap, BlockIsFreeAndSurroundingsUnknown) {
     EXPECT_TRUE(map_.isFree(cellCentre({0, 0, 0}, kRes)));
     EXPECT_TRUE(map_.isFree(cellCentre({19, 9, 4}, kRes)));
@@ -63,9 +70,7 @@ TEST_F(FreeBlockMap, GrazedSurfaceBesideAnOccupiedCellBlocksTheCapsule) {
     const Eigen::Vector3i a(10, 4, 2), b(10, 5, 2);  // A: y in [0.8, 1.0], B: [1.0, 1.2]
     for (int i = 0; i < 3; ++i)
         test::occupy(map_, cellCentre(b, kRes));
-    test::occupy(map_, cellCentre(a, kRes));
-    for (int i = 0; i < 6; ++i)
-        test::freeRow(map_, {0, a.y(), a.z()});
+    hitThenSeeThrough(map_, a);
     ASSERT_TRUE(map_.isFree(cellCentre(a, kRes)));
     ASSERT_TRUE(map_.isOccupied(cellCentre(b, kRes)));
     // The capsule comes within 0.25 m of A and 0.45 m of B.
@@ -102,9 +107,7 @@ TEST_F(FreeBlockMap, ACapsuleAskedAgainSeesWhatChangedInItsRowsAndBesideThem) {
     // A, hit once then seen through, is free; it becomes a grazed surface when B beside it
     // (in the next row, out of the capsule's reach) turns occupied.
     const Eigen::Vector3i a(10, 4, 2), b(10, 5, 2);  // 0.25 m and 0.45 m from the capsule
-    test::occupy(map_, cellCentre(a, kRes));
-    for (int i = 0; i < 6; ++i)
-        test::freeRow(map_, {0, a.y(), a.z()});
+    hitThenSeeThrough(map_, a);
     ASSERT_TRUE(map_.isSegmentFree(from, to, 0.3));
     for (int i = 0; i < 3; ++i)
         test::occupy(map_, cellCentre(b, kRes));
@@ -112,9 +115,7 @@ TEST_F(FreeBlockMap, ACapsuleAskedAgainSeesWhatChangedInItsRowsAndBesideThem) {
     // The same with B in the layer above A's row.
     const Eigen::Vector3d low(1.9, 0.5, 0.35), lowEnd(2.3, 0.5, 0.35);
     const Eigen::Vector3i a2(10, 2, 3), b2(10, 2, 4);  // 0.25 m and 0.45 m above the axis
-    test::occupy(map_, cellCentre(a2, kRes));
-    for (int i = 0; i < 6; ++i)
-        test::freeRow(map_, {0, a2.y(), a2.z()});
+    hitThenSeeThrough(map_, a2);
     ASSERT_TRUE(map_.isSegmentFree(low, lowEnd, 0.3));
     for (int i = 0; i < 3; ++i)
         test::occupy(map_, cellCentre(b2, kRes));
@@ -125,9 +126,7 @@ TEST_F(FreeBlockMap, GrazedWallFaceInFrontOfAnUnknownInsideBlocksTheCapsule) {
     // A wall's face 10 cm into cell A; the wall's inside (y index 10 on) was never seen: it
     // lies beyond the free block. A was hit once, then cleared by rays along the face.
     const Eigen::Vector3i a(10, 9, 2);  // A: y in [1.8, 2.0]
-    test::occupy(map_, cellCentre(a, kRes));
-    for (int i = 0; i < 6; ++i)
-        test::freeRow(map_, {0, a.y(), a.z()});
+    hitThenSeeThrough(map_, a);
     ASSERT_TRUE(map_.isFree(cellCentre(a, kRes)));
     ASSERT_TRUE(map_.isUnknown(cellCentre({10, 10, 2}, kRes)));
     // The capsule comes within 0.25 m of A and 0.45 m of the unknown inside.

@@ -206,7 +206,7 @@ TEST(GainEvaluator, BestYawIsTheFirstMaximumOfTheDegreeSweep) {
     const Aabb room = test::box(-3, -2, -1, 4, 3, 2);
     map->insertPointCloud({0.5, 0.5, 0.5}, test::roomScan(room, {0.5, 0.5, 0.5}, 2.0, 40.0));
     const GainEvaluator g(GainParams{});
-    for (const Eigen::Vector3d p :
+    for (const Eigen::Vector3d& p :
          {Eigen::Vector3d(1.3, -0.4, 0.2), Eigen::Vector3d(3.5, 2.5, 1.0)}) {
         const std::vector<double> cols = g.columns(*map, p);
         YawGain sweep{0.0, -1.0};

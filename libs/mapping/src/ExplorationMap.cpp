@@ -141,30 +141,17 @@ void ExplorationMap::Impl::markRay(const octomap::point3d& origin, const octomap
         tDelta[a] = res / std::fabs(dir(unsigned(a)));
     }
     const std::array<std::int64_t, 3> stride{1, dims[0], std::int64_t(dims[0]) * dims[1]};
-    std::array<int, 3> cell{};  // key - gridMin
-    for (std::size_t a = 0; a < 3; ++a)
-        cell[a] = int(key[a]) - int(gridMin[a]);
-    const auto onGrid = [&] {
-        return cell[0] >= 0 && cell[0] < dims[0] && cell[1] >= 0 && cell[1] < dims[1] &&
-               cell[2] >= 0 && cell[2] < dims[2];
-    };
-    bool inGrid = onGrid();
-    std::int64_t index = inGrid ? cell[0] + stride[1] * cell[1] + stride[2] * cell[2] : -1;
+    std::int64_t index = gridIndex(key);  // stepped along while the walk stays on the grid
     for (;;) {
-        inGrid ? markCell(index, kFreeNow) : markOutside(key, kFreeNow);
+        index >= 0 ? markCell(index, kFreeNow) : markOutside(key, kFreeNow);
         const std::size_t a =
             tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
         key[a] = octomap::key_type(key[a] + step[a]);
         tNext[a] += tDelta[a];
         if (key == last || std::min(std::min(tNext[0], tNext[1]), tNext[2]) > length)
             return;
-        cell[a] += step[a];
-        if (inGrid && cell[a] >= 0 && cell[a] < dims[a]) {
-            index += step[a] * stride[a];
-        } else {
-            inGrid = onGrid();
-            index = inGrid ? cell[0] + stride[1] * cell[1] + stride[2] * cell[2] : -1;
-        }
+        const int c = int(key[a]) - int(gridMin[a]);
+        index = index >= 0 && c >= 0 && c < dims[a] ? index + step[a] * stride[a] : gridIndex(key);
     }
 }
 

@@ -42,10 +42,8 @@ struct ExplorationMap::Impl {
     std::vector<std::uint64_t> rowAbove;  ///< packed keys of the previous image row
 
     /** Key of the cell containing p; false if p is not finite or outside the tree. */
-    bool keyOf(const Eigen::Vector3d& p, octomap::OcTreeKey& key) const {
-        return axisKeyOf(p.x(), key[0]) && axisKeyOf(p.y(), key[1]) && axisKeyOf(p.z(), key[2]);
-    }
-    bool keyOf(const octomap::point3d& p, octomap::OcTreeKey& key) const {
+    template <class Point>  // Eigen::Vector3d or octomap::point3d
+    bool keyOf(const Point& p, octomap::OcTreeKey& key) const {
         return axisKeyOf(p.x(), key[0]) && axisKeyOf(p.y(), key[1]) && axisKeyOf(p.z(), key[2]);
     }
     /** OctoMap's coordToKeyChecked, bit for bit, and faster (octreeAxisKey). */

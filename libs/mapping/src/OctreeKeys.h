@@ -2,6 +2,8 @@
 
 #include <octomap/OcTreeKey.h>
 
+#include "daep/mapping/DenseGridIndex.h"
+
 namespace daep::mapping {
 
 /**
@@ -15,8 +17,7 @@ inline bool octreeAxisKey(double scale, double c, octomap::key_type& k) {
     const double v = scale * c;
     if (!(v >= -kHalfSpan && v < kHalfSpan))
         return false;  // also NaN
-    const int t = int(v);
-    k = octomap::key_type(t - (double(t) > v) + int(kHalfSpan));
+    k = octomap::key_type(floorToInt(v) + int(kHalfSpan));
     return true;
 }
 

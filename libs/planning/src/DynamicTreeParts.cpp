@@ -73,21 +73,21 @@ YawGain DynamicInformationGain::viewOnArrival(const Eigen::Vector3d& from, const
     const GainEvaluator& g = staticView_.evaluator();
     const Eigen::Vector2d leg = (p - from).head<2>();
     const bool facingTravel = flight_.faceTravel && leg.norm() > 0.05;
+    const auto facingTravelView = [&](const std::vector<double>& columns) {
+        const double heading = std::atan2(leg.y(), leg.x());
+        return YawGain{heading, g.windowGain(columns, heading)};
+    };
     if (inRange.empty()) {
         if (!facingTravel)
             return staticView_.viewOnArrival(from, p, arrival, rayCast);
         const std::vector<double> columns = staticView_.rayCastColumns(p, nullptr);
         staticView_.remember(p, g.bestYaw(columns));
-        const double heading = std::atan2(leg.y(), leg.x());
-        return {heading, g.windowGain(columns, heading)};
+        return facingTravelView(columns);
     }
     // The cache keeps the view without people, who will have walked on.
     const GainEvaluator::ColumnViews views = staticView_.rayCastColumnsOpenAndOccluded(p, inRange);
     staticView_.remember(p, g.bestYaw(views.open));
-    if (!facingTravel)
-        return g.bestYaw(views.occluded);
-    const double heading = std::atan2(leg.y(), leg.x());
-    return {heading, g.windowGain(views.occluded, heading)};
+    return facingTravel ? facingTravelView(views.occluded) : g.bestYaw(views.occluded);
 }
 
 }  // namespace daep::planning

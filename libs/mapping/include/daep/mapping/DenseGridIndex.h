@@ -6,6 +6,12 @@
 
 namespace daep::mapping {
 
+/** floor(v) as an int, without the libm call; v must lie within int's range. */
+inline int floorToInt(double v) {
+    const int t = int(v);
+    return t - (double(t) > v);
+}
+
 /**
  * Point to cell index on the map's dense grid: the octree's key formula floor(p / resolution)
  * + offset, computed without the libm floor call. Inline, so that the planners' point queries
@@ -24,8 +30,7 @@ struct DenseGridIndex {
             const double v = p[Eigen::Index(a)] * scale;
             if (!(v >= low[a] && v < high[a]))
                 return -1;
-            const int t = int(v);
-            i[a] = t - (double(t) > v) - low[a];
+            i[a] = floorToInt(v) - low[a];
         }
         return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
     }
