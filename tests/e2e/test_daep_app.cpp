@@ -1,6 +1,9 @@
 // End-to-end: DAEP flown by the real daep-explore binary through the tiny room's walker.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -74,6 +77,55 @@ TEST(DaepTinyRoom, SensedRunsAreReproducibleFromTheSeed) {
     const std::string b = daep::test::deterministicSummaryText(summaryOf(run, dir / "b"));
     EXPECT_EQ(a, b);
     EXPECT_EQ(readText(dir / "a" / "trajectory.csv"), readText(dir / "b" / "trajectory.csv"));
+}
+
+TEST(DaepTinyRoom, PeopleTruthSitsBesideTheTracksFrameByFrame) {
+    // With sensed people the tracks in people.csv are what the camera saw; people_truth.csv
+    // has where the walker really was at the same frames, so tracks can be judged.
+    const auto dir = freshDir("daep_truth");
+    summaryWith("--set experiment.planner=daep --set experiment.start=4"
+                " --set tracking.people_source=sensed --set experiment.max_time_s=30",
+                dir / "daep");
+    std::istringstream truth(readText(dir / "daep" / "people_truth.csv"));
+    std::string line;
+    std::getline(truth, line);
+    EXPECT_EQ(line, "t,person,x,y,vx,vy,heading");
+    std::map<std::string, std::array<double, 2>> walkerAt;  // the one walker, by frame time
+    while (std::getline(truth, line)) {
+        std::istringstream row(line);
+        std::string t, person, x, y;
+        std::getline(row, t, ',');
+        std::getline(row, person, ',');
+        std::getline(row, x, ',');
+        std::getline(row, y, ',');
+        EXPECT_EQ(person, "0") << line;
+        EXPECT_TRUE(walkerAt.emplace(t, std::array<double, 2>{std::stod(x), std::stod(y)}).second)
+            << "two rows at " << t;
+    }
+    EXPECT_GT(walkerAt.size(), 150u);  // 5 Hz for over 30 s
+    // Every track row is at a frame of the truth, and the tracks seen lie on the walker.
+    std::istringstream tracks(readText(dir / "daep" / "people.csv"));
+    std::getline(tracks, line);
+    int rows = 0, onTheWalker = 0;
+    while (std::getline(tracks, line)) {
+        std::istringstream row(line);
+        std::string t, track, x, y;
+        std::getline(row, t, ',');
+        std::getline(row, track, ',');
+        std::getline(row, x, ',');
+        std::getline(row, y, ',');
+        const auto at = walkerAt.find(t);
+        ASSERT_NE(at, walkerAt.end()) << "no truth at " << t;
+        ++rows;
+        if (std::hypot(std::stod(x) - at->second[0], std::stod(y) - at->second[1]) < 0.5)
+            ++onTheWalker;
+    }
+    EXPECT_GT(rows, 0);
+    EXPECT_GT(onTheWalker, rows / 2);
+    // A planner that does not track people writes neither file.
+    summaryWith("--set experiment.planner=aep --set experiment.max_time_s=5", dir / "aep");
+    EXPECT_FALSE(fs::exists(dir / "aep" / "people_truth.csv"));
+    EXPECT_FALSE(fs::exists(dir / "aep" / "people.csv"));
 }
 
 namespace {

@@ -84,11 +84,21 @@ void printSummary(const eval::RunSummary& s, const std::string& dir) {
 }
 
 /** Every file a run writes to its output folder. */
-const char* const kRunOutputs[] = {
-    "summary.json",   "timeseries.csv",    "trajectory.csv", "plans.csv",
-    "collisions.csv", "timing.json",       "config.ini",     "map.bt",
-    "people.csv",     "run.rawlog",        "scene.3Dscene",  "scene_perspective.png",
-    "scene_top.png",  "trajectory_tum.txt"};
+const char* const kRunOutputs[] = {"summary.json",
+                                   "timeseries.csv",
+                                   "trajectory.csv",
+                                   "plans.csv",
+                                   "collisions.csv",
+                                   "timing.json",
+                                   "config.ini",
+                                   "map.bt",
+                                   "people.csv",
+                                   "people_truth.csv",
+                                   "run.rawlog",
+                                   "scene.3Dscene",
+                                   "scene_perspective.png",
+                                   "scene_top.png",
+                                   "trajectory_tum.txt"};
 
 /**
  * A reused output folder must not mix runs: the files an earlier run wrote there go before this

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <iomanip>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "FlightLoop.h"
 #include "MemoryLog.h"
 #include "MissionCore.h"
+#include "PeopleCsv.h"
 #include "SimulatorSource.h"
 #include "daep/common/Error.h"
 #include "daep/mission/ExperimentConfig.h"
@@ -31,6 +33,8 @@ struct Mission::Impl : FlightLoop::Mission {
           core(config, coreUse(), stages, outputDir, logStream),
           memory(core.recorder.path("memory.csv"), core.outputs.memoryEvery) {
         nextScene = core.outputs.sceneEvery;
+        if (core.peopleCsv && !sim.world().people.empty())
+            peopleTruth = std::make_unique<PeopleTruthCsv>(core.recorder.path("people_truth.csv"));
     }
 
     MissionCore::Use coreUse() const {
@@ -67,6 +71,8 @@ struct Mission::Impl : FlightLoop::Mission {
 
     /** The scene, when one is due. */
     void frameProcessed() override {
+        if (peopleTruth)
+            peopleTruth->write(now(), sim.people().states());
         if (core.outputs.scene && core.outputs.sceneEvery > 0 && now() + kEps >= nextScene) {
             core.scene.write(sceneContent());
             nextScene += core.outputs.sceneEvery;
@@ -166,6 +172,8 @@ struct Mission::Impl : FlightLoop::Mission {
     void writeOutputs(const eval::RunSummary& summary) {
         memory.addFinal(explorationTime(), core.map.knownVolumeInBox(), core.map.octree().size());
         const SceneContent scene = sceneContent();
+        if (peopleTruth)
+            peopleTruth->flush();
         core.writeOutputs(summary, now(), &scene);
         memory.writePlot(core.recorder.path("memory.png"),
                          "Memory: " + settings().plannerName + ", " + sim.world().name);
@@ -177,7 +185,8 @@ struct Mission::Impl : FlightLoop::Mission {
     MissionCore core;
     MemoryLog memory;
     FlightLoop flight{sim, core, *this};
-    std::vector<int> collisionTracked;  ///< per monitor event, see trackedAtCollision
+    std::unique_ptr<PeopleTruthCsv> peopleTruth;  ///< with people.csv, in worlds with people
+    std::vector<int> collisionTracked;            ///< per monitor event, see trackedAtCollision
     double nextScene = 0.0;
     const std::atomic<bool>* stopFlag = nullptr;
 

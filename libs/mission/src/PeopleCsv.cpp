@@ -36,4 +36,24 @@ void PeopleCsv::flush() {
         throw std::runtime_error("cannot write " + path_);
 }
 
+PeopleTruthCsv::PeopleTruthCsv(const std::string& path) : path_(path), out_(path) {
+    if (!out_)
+        throw std::runtime_error("cannot write " + path);
+    out_ << "t,person,x,y,vx,vy,heading\n";
+}
+
+void PeopleTruthCsv::write(double t, const std::vector<world::PersonState>& people) {
+    for (std::size_t i = 0; i < people.size(); ++i) {
+        const world::PersonState& p = people[i];
+        out_ << t << ',' << i << ',' << p.position.x() << ',' << p.position.y() << ','
+             << p.velocity.x() << ',' << p.velocity.y() << ',' << p.heading << '\n';
+    }
+}
+
+void PeopleTruthCsv::flush() {
+    out_.flush();
+    if (!out_)
+        throw std::runtime_error("cannot write " + path_);
+}
+
 }  // namespace daep::mission
