@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "RunApp.h"
 
@@ -79,49 +80,64 @@ TEST(DaepTinyRoom, SensedRunsAreReproducibleFromTheSeed) {
     EXPECT_EQ(readText(dir / "a" / "trajectory.csv"), readText(dir / "b" / "trajectory.csv"));
 }
 
+namespace {
+
+/** A people.csv or people_truth.csv row's first four fields: t, who, x, y. */
+struct PersonRow {
+    std::string t, who;
+    double x = 0.0, y = 0.0;
+};
+
+/** The rows of a people CSV after its header, which goes to `header`. */
+std::vector<PersonRow> personRows(const fs::path& file, std::string& header) {
+    std::istringstream text(readText(file));
+    std::getline(text, header);
+    std::vector<PersonRow> rows;
+    for (std::string line; std::getline(text, line);) {
+        std::istringstream fields(line);
+        PersonRow r;
+        std::string x, y;
+        std::getline(fields, r.t, ',');
+        std::getline(fields, r.who, ',');
+        std::getline(fields, x, ',');
+        std::getline(fields, y, ',');
+        r.x = std::stod(x);
+        r.y = std::stod(y);
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+}  // namespace
+
 TEST(DaepTinyRoom, PeopleTruthSitsBesideTheTracksFrameByFrame) {
     // With sensed people the tracks in people.csv are what the camera saw; people_truth.csv
     // has where the walker really was at the same frames, so tracks can be judged.
     const auto dir = freshDir("daep_truth");
-    summaryWith("--set experiment.planner=daep --set experiment.start=4"
-                " --set tracking.people_source=sensed --set experiment.max_time_s=30",
-                dir / "daep");
-    std::istringstream truth(readText(dir / "daep" / "people_truth.csv"));
-    std::string line;
-    std::getline(truth, line);
-    EXPECT_EQ(line, "t,person,x,y,vx,vy,heading");
+    summaryWith(
+        "--set experiment.planner=daep --set experiment.start=4"
+        " --set tracking.people_source=sensed --set experiment.max_time_s=30",
+        dir / "daep");
+    std::string header;
     std::map<std::string, std::array<double, 2>> walkerAt;  // the one walker, by frame time
-    while (std::getline(truth, line)) {
-        std::istringstream row(line);
-        std::string t, person, x, y;
-        std::getline(row, t, ',');
-        std::getline(row, person, ',');
-        std::getline(row, x, ',');
-        std::getline(row, y, ',');
-        EXPECT_EQ(person, "0") << line;
-        EXPECT_TRUE(walkerAt.emplace(t, std::array<double, 2>{std::stod(x), std::stod(y)}).second)
-            << "two rows at " << t;
+    for (const PersonRow& r : personRows(dir / "daep" / "people_truth.csv", header)) {
+        EXPECT_EQ(r.who, "0") << r.t;
+        EXPECT_TRUE(walkerAt.emplace(r.t, std::array<double, 2>{r.x, r.y}).second)
+            << "two rows at " << r.t;
     }
+    EXPECT_EQ(header, "t,person,x,y,vx,vy,heading");
     EXPECT_GT(walkerAt.size(), 150u);  // 5 Hz for over 30 s
     // Every track row is at a frame of the truth, and the tracks seen lie on the walker.
-    std::istringstream tracks(readText(dir / "daep" / "people.csv"));
-    std::getline(tracks, line);
-    int rows = 0, onTheWalker = 0;
-    while (std::getline(tracks, line)) {
-        std::istringstream row(line);
-        std::string t, track, x, y;
-        std::getline(row, t, ',');
-        std::getline(row, track, ',');
-        std::getline(row, x, ',');
-        std::getline(row, y, ',');
-        const auto at = walkerAt.find(t);
-        ASSERT_NE(at, walkerAt.end()) << "no truth at " << t;
-        ++rows;
-        if (std::hypot(std::stod(x) - at->second[0], std::stod(y) - at->second[1]) < 0.5)
+    const std::vector<PersonRow> tracks = personRows(dir / "daep" / "people.csv", header);
+    int onTheWalker = 0;
+    for (const PersonRow& r : tracks) {
+        const auto at = walkerAt.find(r.t);
+        ASSERT_NE(at, walkerAt.end()) << "no truth at " << r.t;
+        if (std::hypot(r.x - at->second[0], r.y - at->second[1]) < 0.5)
             ++onTheWalker;
     }
-    EXPECT_GT(rows, 0);
-    EXPECT_GT(onTheWalker, rows / 2);
+    EXPECT_GT(tracks.size(), 0u);
+    EXPECT_GT(onTheWalker, int(tracks.size()) / 2);
     // A planner that does not track people writes neither file.
     summaryWith("--set experiment.planner=aep --set experiment.max_time_s=5", dir / "aep");
     EXPECT_FALSE(fs::exists(dir / "aep" / "people_truth.csv"));

@@ -105,21 +105,19 @@ TEST_F(FreeBlockMap, ACapsuleAskedAgainSeesWhatChangedInItsRowsAndBesideThem) {
         test::freeRow(map_, {0, 3, 2});
     ASSERT_TRUE(map_.isSegmentFree(from, to, 0.3));
     // A, hit once then seen through, is free; it becomes a grazed surface when B beside it
-    // (in the next row, out of the capsule's reach) turns occupied.
-    const Eigen::Vector3i a(10, 4, 2), b(10, 5, 2);  // 0.25 m and 0.45 m from the capsule
-    hitThenSeeThrough(map_, a);
-    ASSERT_TRUE(map_.isSegmentFree(from, to, 0.3));
-    for (int i = 0; i < 3; ++i)
-        test::occupy(map_, cellCentre(b, kRes));
-    EXPECT_FALSE(map_.isSegmentFree(from, to, 0.3));
-    // The same with B in the layer above A's row.
-    const Eigen::Vector3d low(1.9, 0.5, 0.35), lowEnd(2.3, 0.5, 0.35);
-    const Eigen::Vector3i a2(10, 2, 3), b2(10, 2, 4);  // 0.25 m and 0.45 m above the axis
-    hitThenSeeThrough(map_, a2);
-    ASSERT_TRUE(map_.isSegmentFree(low, lowEnd, 0.3));
-    for (int i = 0; i < 3; ++i)
-        test::occupy(map_, cellCentre(b2, kRes));
-    EXPECT_FALSE(map_.isSegmentFree(low, lowEnd, 0.3));
+    // (out of the capsule's reach) turns occupied.
+    const auto grazedOnceBesideFills = [&](const Eigen::Vector3i& a, const Eigen::Vector3i& b,
+                                           const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+        hitThenSeeThrough(map_, a);
+        ASSERT_TRUE(map_.isSegmentFree(p, q, 0.3));
+        for (int i = 0; i < 3; ++i)
+            test::occupy(map_, cellCentre(b, kRes));
+        EXPECT_FALSE(map_.isSegmentFree(p, q, 0.3));
+    };
+    // B in the next row: 0.25 m and 0.45 m from the capsule.
+    grazedOnceBesideFills({10, 4, 2}, {10, 5, 2}, from, to);
+    // B in the layer above A's row: 0.25 m and 0.45 m above the axis.
+    grazedOnceBesideFills({10, 2, 3}, {10, 2, 4}, {1.9, 0.5, 0.35}, {2.3, 0.5, 0.35});
 }
 
 TEST_F(FreeBlockMap, GrazedWallFaceInFrontOfAnUnknownInsideBlocksTheCapsule) {

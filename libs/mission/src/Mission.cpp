@@ -69,7 +69,7 @@ struct Mission::Impl : FlightLoop::Mission {
                 trackedAtCollision(events[collisionTracked.size()].personIndex));
     }
 
-    /** The scene, when one is due. */
+    /** The people's true positions (with people.csv), and the scene when one is due. */
     void frameProcessed() override {
         if (peopleTruth)
             peopleTruth->write(now(), sim.people().states());

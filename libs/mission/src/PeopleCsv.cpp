@@ -15,45 +15,34 @@ double majorSigma(const Eigen::Matrix2d& covariance) {
 
 }  // namespace
 
-PeopleCsv::PeopleCsv(const std::string& path) : path_(path), out_(path) {
+CsvFile::CsvFile(const std::string& path, const char* header) : path_(path), out_(path) {
     if (!out_)
         throw std::runtime_error("cannot write " + path);
-    out_ << "t,track,x,y,vx,vy,sigma\n";
+    out_ << header << '\n';
+}
+
+void CsvFile::flush() {
+    out_.flush();
+    if (!out_)
+        throw std::runtime_error("cannot write " + path_);
 }
 
 void PeopleCsv::write(double t, const std::vector<perception::PersonForecast>& tracks) {
+    std::ostream& out = file_.out();
     for (const perception::PersonForecast& f : tracks) {
         const perception::PositionPrediction p = f.at(t);
-        out_ << t << ',' << f.id << ',' << p.mean.x() << ',' << p.mean.y() << ','
-             << f.velocity().x() << ',' << f.velocity().y() << ',' << majorSigma(p.covariance)
-             << '\n';
+        out << t << ',' << f.id << ',' << p.mean.x() << ',' << p.mean.y() << ',' << f.velocity().x()
+            << ',' << f.velocity().y() << ',' << majorSigma(p.covariance) << '\n';
     }
-}
-
-void PeopleCsv::flush() {
-    out_.flush();
-    if (!out_)
-        throw std::runtime_error("cannot write " + path_);
-}
-
-PeopleTruthCsv::PeopleTruthCsv(const std::string& path) : path_(path), out_(path) {
-    if (!out_)
-        throw std::runtime_error("cannot write " + path);
-    out_ << "t,person,x,y,vx,vy,heading\n";
 }
 
 void PeopleTruthCsv::write(double t, const std::vector<world::PersonState>& people) {
+    std::ostream& out = file_.out();
     for (std::size_t i = 0; i < people.size(); ++i) {
         const world::PersonState& p = people[i];
-        out_ << t << ',' << i << ',' << p.position.x() << ',' << p.position.y() << ','
-             << p.velocity.x() << ',' << p.velocity.y() << ',' << p.heading << '\n';
+        out << t << ',' << i << ',' << p.position.x() << ',' << p.position.y() << ','
+            << p.velocity.x() << ',' << p.velocity.y() << ',' << p.heading << '\n';
     }
-}
-
-void PeopleTruthCsv::flush() {
-    out_.flush();
-    if (!out_)
-        throw std::runtime_error("cannot write " + path_);
 }
 
 }  // namespace daep::mission

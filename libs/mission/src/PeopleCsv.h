@@ -9,19 +9,31 @@
 
 namespace daep::mission {
 
-/** people.csv: the confirmed tracks after every depth frame (t,track,x,y,vx,vy,sigma). */
-class PeopleCsv {
+/** One CSV output file: created with its header, written row by row, checked at flush. */
+class CsvFile {
 public:
-    /** Creates the file; throws std::runtime_error naming it on failure. */
-    explicit PeopleCsv(const std::string& path);
+    /** Creates the file with its header line; throws std::runtime_error naming it on failure. */
+    CsvFile(const std::string& path, const char* header);
 
-    void write(double t, const std::vector<perception::PersonForecast>& tracks);
+    std::ostream& out() { return out_; }
     /** Throws std::runtime_error naming the file when a write failed. */
     void flush();
 
 private:
     std::string path_;
     std::ofstream out_;
+};
+
+/** people.csv: the confirmed tracks after every depth frame (t,track,x,y,vx,vy,sigma). */
+class PeopleCsv {
+public:
+    explicit PeopleCsv(const std::string& path) : file_(path, "t,track,x,y,vx,vy,sigma") {}
+
+    void write(double t, const std::vector<perception::PersonForecast>& tracks);
+    void flush() { file_.flush(); }
+
+private:
+    CsvFile file_;
 };
 
 /**
@@ -31,16 +43,13 @@ private:
  */
 class PeopleTruthCsv {
 public:
-    /** Creates the file; throws std::runtime_error naming it on failure. */
-    explicit PeopleTruthCsv(const std::string& path);
+    explicit PeopleTruthCsv(const std::string& path) : file_(path, "t,person,x,y,vx,vy,heading") {}
 
     void write(double t, const std::vector<world::PersonState>& people);
-    /** Throws std::runtime_error naming the file when a write failed. */
-    void flush();
+    void flush() { file_.flush(); }
 
 private:
-    std::string path_;
-    std::ofstream out_;
+    CsvFile file_;
 };
 
 }  // namespace daep::mission
