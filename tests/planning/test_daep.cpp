@@ -239,6 +239,24 @@ TEST_F(DaepRoom, InsideAKeepOutAlreadyTheEscapeLeadsAwayFromThePerson) {
     EXPECT_LT(away.x(), -0.95 * away.norm()) << plan.reason;  // west, straight away
 }
 
+TEST_F(DaepRoom, UnderALowCeilingTheEscapeLeadsAwayFromAWalkerNotTowardsThem) {
+    // The box is 2 m high, so the drone (at most 1.7 m) cannot climb over a person's head
+    // (1.85 m plus the clearance). Just under the ceiling, with someone 0.7 m east walking at
+    // the drone, every escape was as deep below the head as the drone is: they tied, and the
+    // first candidate, 0.4 m east, won (the Crosswalks collisions of stop 33).
+    DaepPlanner planner = makePlanner(3);
+    const Eigen::Vector3d high(2.0, 2.0, 1.6);
+    PlanningContext ctx = contextFor(*map, high, 0.0);
+    std::vector<PersonForecast> people{walker(0, {2.7, 2.0}, {-0.35, 0}, ctx.time)};
+    people[0].accelNoise = 1e-4;
+    ctx.people = &people;
+    const Plan plan = planner.escape(ctx);
+    ASSERT_FALSE(plan.waypoints.empty()) << plan.reason;
+    const Eigen::Vector2d away = (plan.waypoints.back().pose.position - high).head<2>();
+    EXPECT_GT(away.norm(), 0.3) << plan.reason;
+    EXPECT_LT(away.x(), -0.7 * away.norm()) << plan.reason;  // westwards, ahead of them
+}
+
 TEST_F(DaepRoom, KeepFlyingStopsWhenAPersonIsPredictedOnTheRestOfThePath) {
     DaepPlanner planner = makePlanner(2);
     PlanningContext ctx = contextFor(*map, root);

@@ -88,6 +88,30 @@ TEST(DynamicObstacles, ClearanceIsTheSmallestGapBetweenGrownBodyAndDrone) {
                 1e-9);
 }
 
+TEST(DynamicObstacles, BelowTheTopClimbingCountsAsAWayOutOnlyWhereTheCeilingAllowsIt) {
+    // Just below the top of someone standing at the origin, 0.3 m and 0.6 m from them: the
+    // drone is 0.25 m below the top (1.85 m), deeper than that inside the footprint.
+    const double body = 0.5 * std::sqrt(2.0) + 0.5 * std::hypot(0.4, 0.4);
+    TimedSegment near, far, over;
+    near.from = near.to = {0.3, 0, 1.6};
+    far.from = far.to = {0.6, 0, 1.6};
+    over.from = over.to = {0.3, 0, 1.8 + 0.05 + 0.1};
+    // Room above the people: the shorter way out is up, the same for both spots.
+    const DynamicObstacles roomy(exactSafety(), {walker(0, {0, 0}, {0, 0})});
+    EXPECT_NEAR(roomy.clearance(near), -0.25, 1e-9);
+    EXPECT_NEAR(roomy.clearance(far), -0.25, 1e-9);
+    // A 2 m box (centres up to 1.7 m): only sideways, and the farther spot has more gap.
+    SafetyParams low = exactSafety();
+    low.ceiling = 1.7;
+    const DynamicObstacles lowRoom(low, {walker(0, {0, 0}, {0, 0})});
+    EXPECT_NEAR(lowRoom.clearance(near), 0.3 - body, 1e-9);
+    EXPECT_NEAR(lowRoom.clearance(far), 0.6 - body, 1e-9);
+    // The sign, and so every safety check, is the same: above the top it is the vertical gap.
+    EXPECT_NEAR(roomy.clearance(over), 0.1, 1e-9);
+    EXPECT_NEAR(lowRoom.clearance(over), 0.1, 1e-9);
+    EXPECT_EQ(roomy.isSafe(near), lowRoom.isSafe(near));
+}
+
 TEST(DynamicObstacles, SampledChecksAreConservativeForFastCrossings) {
     // Drone and person cross head-on between two samples: the slack must still catch it.
     SafetyParams s = exactSafety();

@@ -83,6 +83,7 @@ DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const 
     SafetyParams safety = params_.safety;
     safety.droneSize = context.droneSize;
     safety.personSize = context.personSize;
+    safety.ceiling = shrink(context.explorationBox, params().robotRadius).max.z();
     return DynamicObstacles(
         safety, context.people ? *context.people : std::vector<perception::PersonForecast>{});
 }

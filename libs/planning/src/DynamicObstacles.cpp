@@ -87,15 +87,17 @@ double DynamicObstacles::gapTo(const perception::PersonForecast& person, const T
     const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) / params_.timeStep)));
     const double h = (t1 - t0) / steps;
     const double slack = 0.5 * h * closing;
+    const double top = clearedHeight(clearanceScale);
+    const bool canClimbOver = params_.ceiling > top;
     double gap = std::numeric_limits<double>::infinity();
     for (int k = 0; k <= steps; ++k) {
         const double t = t0 + k * h;
         const Eigen::Vector3d d = move.positionAt(t);
-        const double above = d.z() - (bodyTop_ + clearanceScale * params_.clearance);
+        const double above = d.z() - top;
         const perception::PositionPrediction body = person.at(t);
         const double horizontal =
             (d.head<2>() - body.mean).norm() - keepOutRadius(body, clearanceScale) - slack;
-        gap = std::min(gap, std::max(horizontal, above));
+        gap = std::min(gap, above > 0.0 || canClimbOver ? std::max(horizontal, above) : horizontal);
     }
     return gap;
 }

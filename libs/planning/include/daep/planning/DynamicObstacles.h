@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "daep/common/Types.h"
@@ -18,6 +19,12 @@ struct SafetyParams {
     double maxInflation = 1.0;    ///< ...but never by more than this, m
     double horizon = 10.0;        ///< predictions beyond this (s from their state) are not used
     double timeStep = 0.2;        ///< sampling step of swept checks, s (made conservative)
+    /**
+     * Highest drone centre the flight space allows, m. Where it is below the top of the
+     * grown bodies the drone cannot climb over people, so the gap below their top is the
+     * horizontal one alone.
+     */
+    double ceiling = std::numeric_limits<double>::infinity();
 };
 
 /** A drone move as the simulator flies it: turn on the spot at `from`, then fly to `to`. */
@@ -58,7 +65,11 @@ public:
     const SafetyParams& params() const { return params_; }
     const std::vector<perception::PersonForecast>& people() const { return people_; }
 
-    /** Smallest gap (m, negative inside) between the drone and any grown body along the move. */
+    /**
+     * Smallest gap (m, negative inside) between the drone and any grown body along the move.
+     * Inside a body's footprint and below its top, the gap is the shorter way out, sideways
+     * or up; up only where the ceiling lets the drone rise above the body.
+     */
     double clearance(const TimedSegment& move, double clearanceScale = 1.0) const;
 
     /** clearance(move) > 0. */
@@ -70,6 +81,10 @@ public:
     /** Predicted bodies (mean positions, no inflation) at time t, within the horizon. */
     std::vector<BodyOccluder> bodiesAt(double t) const;
 
+    /** Drone centres at or above this height keep the clearance over every body. */
+    double clearedHeight(double clearanceScale = 1.0) const {
+        return bodyTop_ + clearanceScale * params_.clearance;
+    }
     /** Centre distance kept from a body known exactly: body + drone + clearance. */
     double bodyKeepOut(double clearanceScale = 1.0) const {
         return bodyRadius_ + clearanceScale * params_.clearance;
