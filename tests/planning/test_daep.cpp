@@ -519,6 +519,139 @@ TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
     }
 }
 
+/** An 8 x 4 x 2.5 m box (room over the people's heads) under a 2.7 m ceiling, seen from (2, 2, 1).
+ */
+struct TallRoom : ::testing::Test {
+    void SetUp() override {
+        map = test::makeMap(test::box(0, 0, 0, 8, 4, 2.5), 2.5);
+        const Aabb walls = test::box(-0.1, -0.1, -0.1, 8.1, 4.1, 2.7);
+        map->insertPointCloud(root, test::roomScan(walls, root, 0.5));
+    }
+    const Eigen::Vector3d root{2.0, 2.0, 1.0};
+    std::unique_ptr<mapping::ExplorationMap> map;
+};
+
+/** The same plan made with fly_over_heads = `lift` and false: raised, and as planned. */
+std::pair<Plan, Plan> planRaisedAndNot(const mapping::ExplorationMap& map,
+                                       const Eigen::Vector3d& at, std::uint64_t seed,
+                                       const std::string& lift, bool fromCamera) {
+    PlanningContext ctx = contextFor(map, at);
+    ctx.peopleFromCamera = fromCamera;
+    const std::vector<PersonForecast> nobody;
+    ctx.people = &nobody;
+    DaepPlanner raising = makePlanner(seed, "fly_over_heads", lift);
+    DaepPlanner asPlanned = makePlanner(seed, "fly_over_heads", "false");
+    return {raising.plan(ctx), asPlanned.plan(ctx)};
+}
+
+TEST_F(TallRoom, WithPeopleFromTheCameraStopsAreRaisedOverTheirHeads) {
+    // Over a body (1.8 m), half the drone (0.05 m), the clearance (0.2 m) and 5 cm.
+    const double overHeads = 1.8 + 0.05 + 0.2 + 0.05;
+    int raised = 0;
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        const auto [plan, asPlanned] = planRaisedAndNot(*map, root, seed, "auto", true);
+        ASSERT_EQ(plan.status, Plan::Status::Path) << plan.reason;
+        EXPECT_NE(plan.reason.find("over heads"), std::string::npos) << plan.reason;
+        PlanningContext ctx = contextFor(*map, root);
+        FlatPose at = ctx.pose;
+        double t = ctx.time;
+        std::size_t k = 0;  // the planned stop met next
+        for (const Waypoint& w : plan.waypoints) {
+            const FlatPose& p = w.pose;
+            EXPECT_TRUE(segmentFlyable(*map, at.position, p.position, 0.3, false)) << seed;
+            t += ctx.motion.travelTime(at, p);  // timed as flown, climbs included
+            EXPECT_NEAR(w.arrivalTime, t, 1e-9) << seed;
+            at = p;
+            ASSERT_LT(k, asPlanned.waypoints.size()) << seed;
+            const FlatPose& q = asPlanned.waypoints[k].pose;
+            if (!p.position.head<2>().isApprox(q.position.head<2>(), 1e-9)) {
+                // A point added to climb first: over the heads, with the leg's heading.
+                EXPECT_NEAR(p.position.z(), overHeads, 1e-9) << seed;
+                EXPECT_DOUBLE_EQ(p.yaw, q.yaw) << seed;
+                continue;
+            }
+            // The same stop, the same view; higher where its legs allow it.
+            EXPECT_DOUBLE_EQ(p.yaw, q.yaw);
+            if (std::abs(p.position.z() - overHeads) < 1e-9)
+                ++raised;
+            else
+                EXPECT_DOUBLE_EQ(p.position.z(), q.position.z()) << seed;
+            ++k;
+        }
+        EXPECT_EQ(k, asPlanned.waypoints.size()) << seed;  // every planned stop, in order
+    }
+    EXPECT_GT(raised, 3);
+}
+
+TEST_F(TallRoom, WithGroundTruthPeopleOrNoRoomOverHeadsThePlanIsKept) {
+    // Ground truth (auto is off), and a 2 m box (the drone at most 1.7 m high).
+    auto lowMap = test::makeMap(test::box(0, 0, 0, 8, 4, 2), 2.5);
+    lowMap->insertPointCloud(root,
+                             test::roomScan(test::box(-0.1, -0.1, -0.1, 8.1, 4.1, 2.1), root, 0.5));
+    for (std::uint64_t seed = 1; seed <= 3; ++seed)
+        for (const auto& [m, lift, fromCamera] :
+             {std::tuple{map.get(), "auto", false}, std::tuple{lowMap.get(), "true", true}}) {
+            const auto [plan, asPlanned] = planRaisedAndNot(*m, root, seed, lift, fromCamera);
+            ASSERT_EQ(plan.waypoints.size(), asPlanned.waypoints.size());
+            for (std::size_t k = 0; k < plan.waypoints.size(); ++k)
+                EXPECT_TRUE(
+                    plan.waypoints[k].pose.position.isApprox(asPlanned.waypoints[k].pose.position))
+                    << seed;
+        }
+}
+
+TEST_F(TallRoom, WithRoomOverHeadsTheEscapeFromAWalkerIsStraightUp) {
+    // Someone 2.5 m east walks at the hovering drone: with people from the camera (who may
+    // have company it has not seen) it climbs over their heads; with ground truth it moves
+    // aside as before.
+    for (const bool fromCamera : {true, false}) {
+        DaepPlanner planner = makePlanner(3);
+        PlanningContext ctx = contextFor(*map, root, 0.0);
+        ctx.peopleFromCamera = fromCamera;
+        std::vector<PersonForecast> people{walker(0, {4.5, 2.0}, {-0.35, 0}, ctx.time)};
+        ctx.people = &people;
+        const std::optional<Plan> escape = planner.evasion(ctx, ctx.time + 3.0);
+        ASSERT_TRUE(escape.has_value());
+        ASSERT_EQ(escape->waypoints.size(), 1u) << escape->reason;
+        const Eigen::Vector3d to = escape->waypoints[0].pose.position;
+        if (fromCamera) {
+            EXPECT_TRUE(to.isApprox(Eigen::Vector3d(2.0, 2.0, 2.1))) << escape->reason;
+            EXPECT_TRUE(planner.obstacles().isSafe(planner.timedMoves(ctx, *escape, 0)[0]));
+        } else {
+            EXPECT_LT(to.z(), 2.0) << escape->reason;
+        }
+    }
+}
+
+TEST_F(TallRoom, AStopOverTheHeadsNeedsNoLookAtTheWalkwaysBehind) {
+    // A walker stood behind the drone (west), then was lost: with the stops kept low, the
+    // drone first turns to look at that walkway; over the heads nobody from it can reach it.
+    for (const char* overHeads : {"false", "auto"}) {
+        const std::string flag = overHeads;
+        const auto cfg =
+            test::configFromText(test::editKey(daepText(), "daep", "fly_over_heads", &flag));
+        DaepPlanner planner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 3);
+        PlanningContext ctx = contextFor(*map, root);
+        ctx.peopleFromCamera = true;
+        for (int k = 0; k < 10; ++k) {
+            ctx.time = 2.0 + 0.25 * k;
+            const std::vector<PersonForecast> people{walker(0, {0.5, 2.5}, {0, 0}, ctx.time)};
+            ctx.people = &people;
+            planner.keepFlying(ctx, Plan{}, 0);
+        }
+        ctx.time = 12.0;  // the walkway unseen for 10 s
+        const std::vector<PersonForecast> nobody;
+        ctx.people = &nobody;
+        const Plan plan = planner.plan(ctx);
+        ASSERT_FALSE(plan.waypoints.empty()) << plan.reason;
+        const bool looked = plan.reason.rfind("look:", 0) == 0;
+        EXPECT_EQ(looked, flag == "false") << plan.reason;
+        if (!looked)
+            EXPECT_GE(plan.waypoints.front().pose.position.z(), planner.obstacles().clearedHeight())
+                << plan.reason;
+    }
+}
+
 /**
  * The Exhibition corner: a 6 x 6 m room, all of it seen, and a person walking at 0.35 m/s
  * straight at a drone that stopped in its south-west corner.

@@ -11,7 +11,9 @@
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Geometry.h"
 #include "daep/mapping/ExplorationMap.h"
+#include "daep/planning/FlightModel.h"
 #include "daep/planning/FlightSpace.h"
+#include "daep/planning/OverHeads.h"
 #include "daep/planning/WayOut.h"
 
 namespace daep::planning {
@@ -21,6 +23,14 @@ namespace {
 constexpr double kDfmPeriod = 0.2;
 /** ...and only while measured recently (s): a prediction is not an observation. */
 constexpr double kDfmFreshness = 0.5;
+/** How far (m) over the height that clears every body a stop over the heads is put. */
+constexpr double kOverHeads = 0.05;
+
+bool samePositions(const std::vector<Waypoint>& a, const std::vector<Waypoint>& b) {
+    return std::equal(
+        a.begin(), a.end(), b.begin(), b.end(),
+        [](const Waypoint& p, const Waypoint& q) { return p.pose.position == q.pose.position; });
+}
 
 }  // namespace
 
@@ -55,6 +65,7 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.blind.stopTime = requireNonNegative(r, "blind_stop_s");
     p.blind.range = requirePositive(r, "blind_watch_range");
     p.blind.maxLooks = requireIntAtLeast(r, "blind_max_looks", 0);
+    p.flyOverHeads = requireEnum(r, "fly_over_heads", autoSwitch);
     return p;
 }
 
@@ -96,6 +107,7 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
         watch_ = BlindWatch(dfm_, params_.blind);
     }
     guardingBlind_ = isOn(params_.blindGuard, context.peopleFromCamera);
+    flyingOverHeads_ = isOn(params_.flyOverHeads, context.peopleFromCamera);
     if (guardingBlind_)
         watch_.see(context.pose, gainEvaluator().params().hfov, context.time);
     if (context.time < lastObservation_ + kDfmPeriod)
@@ -152,8 +164,8 @@ Plan DaepPlanner::wait(const PlanningContext& context, const std::string& why) c
 std::optional<BlindThreat> DaepPlanner::blindThreat(const PlanningContext& context,
                                                     const Eigen::Vector3d& stop,
                                                     double until) const {
-    if (!guardingBlind_)
-        return std::nullopt;
+    if (!guardingBlind_ || stop.z() >= obstacles_.clearedHeight())
+        return std::nullopt;  // nobody reaches a drone over their head
     const BlindThreat threat =
         watch_.worstThreat(dfm_, stop.head<2>(), context.time, until, obstacles_.bodyKeepOut());
     if (threat.excess <= 0.0)
@@ -161,21 +173,31 @@ std::optional<BlindThreat> DaepPlanner::blindThreat(const PlanningContext& conte
     return threat;
 }
 
-void DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
-    const Waypoint& stop = plan.waypoints.front();
+const Waypoint* DaepPlanner::guardedStop(const PlanningContext& context, const Plan& plan) const {
+    if (!overHeadsHeight(context))
+        return &plan.waypoints.front();
+    // Flying over the heads, the first stop among the people is where they may come.
+    for (const Waypoint& w : plan.waypoints)
+        if (w.pose.position.z() < obstacles_.clearedHeight())
+            return &w;
+    return nullptr;
+}
+
+bool DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
+    const Waypoint* stop = guardedStop(context, plan);
     const std::optional<BlindThreat> threat =
-        looks_ < params_.blind.maxLooks
-            ? blindThreat(context, stop.pose.position, stop.arrivalTime + params_.blind.stopTime)
+        looks_ < params_.blind.maxLooks && stop != nullptr
+            ? blindThreat(context, stop->pose.position, stop->arrivalTime + params_.blind.stopTime)
             : std::nullopt;
     if (!threat) {
         looks_ = 0;
-        return;
+        return false;
     }
     const Eigen::Vector2d d = threat->cell - context.pose.position.head<2>();
     const FlatPose look{context.pose.position, std::atan2(d.y(), d.x())};
     if (!timeAware_.timedValid(context.pose, context.time, look)) {
         looks_ = 0;
-        return;
+        return false;
     }
     ++looks_;
     std::ostringstream why;
@@ -187,6 +209,7 @@ void DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
     out.tree = std::move(plan.tree);
     out.reason = why.str();
     plan = std::move(out);
+    return true;
 }
 
 Plan DaepPlanner::escape(const PlanningContext& context) {
@@ -257,6 +280,13 @@ struct Escape {
 
 }  // namespace
 
+std::optional<double> DaepPlanner::overHeadsHeight(const PlanningContext& context) const {
+    const double height = obstacles_.clearedHeight() + kOverHeads;
+    if (!flyingOverHeads_ || height > shrink(context.explorationBox, params().robotRadius).max.z())
+        return std::nullopt;
+    return height;
+}
+
 template <typename Visit>
 void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
                                     Visit&& visit) const {
@@ -264,6 +294,12 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
     const double r = params().robotRadius;
     const Aabb box = shrink(context.explorationBox, r);
     const bool leavingBlocked = !map.isSegmentFree(from, from, r);
+    if (const std::optional<double> high = overHeadsHeight(context); high && *high > from.z()) {
+        // Straight up, over the heads: there nobody, seen or not, can reach the drone.
+        const Eigen::Vector3d up(from.x(), from.y(), *high);
+        if (segmentFlyable(map, from, up, r, leavingBlocked) && !visit(up, context.pose.yaw, 0.0))
+            return;
+    }
     for (const double distance : {0.4, 0.8, 1.2, 1.6}) {
         for (int k = 0; k < 16; ++k) {
             for (const double dz : {0.0, 0.4, -0.4}) {
@@ -411,12 +447,46 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
         return hoverSafe ? plan : bestEscape(context);  // get clear first, then judge again
     plan = cutBeforeTrap(context, cutAtFirstUnsafe(context, std::move(plan)));
     if (!plan.waypoints.empty()) {
-        lookBeforeStop(context, plan);
+        plan = overHeads(context, std::move(plan));
+        if (lookBeforeStop(context, plan))  // a stop over heads needs no look
+            plan = overHeads(context, std::move(plan));
         return plan;
     }
     if (!hoverSafe)
         return bestEscape(context);
-    return wait(context, plan.reason);
+    return overHeads(context, wait(context, plan.reason));
+}
+
+Plan DaepPlanner::overHeads(const PlanningContext& context, Plan plan) const {
+    if (plan.status != Plan::Status::Path || plan.escape)
+        return plan;
+    const std::optional<double> height = overHeadsHeight(context);
+    if (!height)
+        return plan;
+    OverHeadsSpace space;
+    space.map = context.map;
+    space.radius = params().robotRadius;
+    space.height = *height;
+    const Eigen::Vector3d& start = context.pose.position;
+    space.leavingBlocked = !context.map->isSegmentFree(start, start, space.radius);
+    std::vector<Waypoint> raised = plan.waypoints;
+    const bool any = raiseStops(space, start, raised);
+    // Kept high between the stops if that is clear of the people, else the raised stops alone;
+    // either way it stops over the heads before going down among the people again.
+    for (std::vector<Waypoint> way : {stayHigh(space, start, raised), raised}) {
+        way.resize(beforeDescent(space, start, way));
+        if (!any && samePositions(way, plan.waypoints))
+            return plan;  // nothing raised, added or cut
+        Plan candidate = plan;
+        candidate.waypoints =
+            FlightModel{context.motion, false}.flown(context.pose, context.time, way);
+        candidate = cutAtFirstUnsafe(context, std::move(candidate));
+        if (!way.empty() && candidate.waypoints.size() == way.size()) {
+            candidate.reason += "; over heads";
+            return candidate;
+        }
+    }
+    return plan;
 }
 
 bool DaepPlanner::keepFlying(const PlanningContext& context, const Plan& plan,

@@ -52,6 +52,13 @@ struct DaepParams {
      */
     AutoSwitch blindGuard = AutoSwitch::Auto;
     BlindWatchParams blind;
+    /**
+     * Where the box lets the drone fly over people's heads, it stops up there, flies up there
+     * between stops as long as the way allows, looks before it goes down among them, and
+     * escapes straight up first: always, never, or auto (when the people come from the
+     * camera, which does not see who walks up behind the drone).
+     */
+    AutoSwitch flyOverHeads = AutoSwitch::Auto;
 
     static DaepParams fromConfig(const mrpt::config::CConfigFileBase& config);
 };
@@ -148,17 +155,38 @@ private:
                                const Eigen::Vector3d& straight) const;
     /**
      * visit(goal, heading, distance) for every short straight escape move from `from` that is
-     * free of static obstacles, nearest first, until visit returns false.
+     * free of static obstacles, nearest first (straight up over the heads, where stops are
+     * raised there, at distance 0), until visit returns false.
      */
     template <typename Visit>
     void forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
                            Visit&& visit) const;
     Plan wait(const PlanningContext& context, const std::string& why) const;
-    /** The worst blind threat to a drone staying at `stop` until `until`, if guarding. */
+    /**
+     * The worst blind threat to a drone staying at `stop` until `until`, if guarding and the
+     * stop is not over the people's heads.
+     */
     std::optional<BlindThreat> blindThreat(const PlanningContext& context,
                                            const Eigen::Vector3d& stop, double until) const;
-    /** Replaces the plan by a turn to look at the worst blind threat to its first stop, if any. */
-    void lookBeforeStop(const PlanningContext& context, Plan& plan);
+    /**
+     * Replaces the plan by a turn to look at the worst blind threat to its first stop, if any
+     * (then returns true).
+     */
+    bool lookBeforeStop(const PlanningContext& context, Plan& plan);
+    /**
+     * The stop of the plan the blind guard checks: the first; where stops are raised over the
+     * heads, the first below them (none when the whole plan is flown over the heads).
+     */
+    const Waypoint* guardedStop(const PlanningContext& context, const Plan& plan) const;
+    /**
+     * A path with its stops raised over the people's heads where the box, the known free space
+     * and the predicted people allow; otherwise the path as it is.
+     */
+    Plan overHeads(const PlanningContext& context, Plan plan) const;
+    /** The height of stops over heads, when raising them is on and the box has room for it. */
+    std::optional<double> overHeadsHeight(const PlanningContext& context) const;
+
+    bool flyingOverHeads_ = false;  ///< flyOverHeads decided for the current context
 
     DaepParams params_;
     bool guardingBlind_ = false;  ///< blindGuard decided for the current context
