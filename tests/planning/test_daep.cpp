@@ -454,11 +454,15 @@ TEST_F(DaepRoom, FacingTravelFliesEveryLegLookingAheadThenTurnsToTheView) {
     }
 }
 
-/** A camera-fed planner that saw a person stand behind it, at (0.5, 2.5), then lost them. */
+/**
+ * A camera-fed planner (with `key` = `value` in [daep]) that saw a person stand behind it, at
+ * (0.5, 2.5), then lost them.
+ */
 std::unique_ptr<DaepPlanner> guardedAfterAWalkerBehind(const mapping::ExplorationMap& map,
                                                        const Eigen::Vector3d& at,
-                                                       const std::string& guard) {
-    std::unique_ptr<DaepPlanner> owned = newPlanner(3, "blind_guard", guard);
+                                                       const std::string& value,
+                                                       const std::string& key = "blind_guard") {
+    std::unique_ptr<DaepPlanner> owned = newPlanner(3, key, value);
     DaepPlanner& planner = *owned;
     PlanningContext ctx = contextFor(map, at);  // facing +x: the walker is behind
     ctx.peopleFromCamera = true;
@@ -626,20 +630,12 @@ TEST_F(TallRoom, WithRoomOverHeadsTheEscapeFromAWalkerIsStraightUp) {
 TEST_F(TallRoom, AStopOverTheHeadsNeedsNoLookAtTheWalkwaysBehind) {
     // A walker stood behind the drone (west), then was lost: with the stops kept low, the
     // drone first turns to look at that walkway; over the heads nobody from it can reach it.
-    for (const char* overHeads : {"false", "auto"}) {
-        const std::string flag = overHeads;
-        const auto cfg =
-            test::configFromText(test::editKey(daepText(), "daep", "fly_over_heads", &flag));
-        DaepPlanner planner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 3);
-        PlanningContext ctx = contextFor(*map, root);
+    for (const std::string flag : {"false", "auto"}) {
+        const std::unique_ptr<DaepPlanner> owned =
+            guardedAfterAWalkerBehind(*map, root, flag, "fly_over_heads");
+        DaepPlanner& planner = *owned;
+        PlanningContext ctx = contextFor(*map, root);  // t = 12: the walkway unseen for 10 s
         ctx.peopleFromCamera = true;
-        for (int k = 0; k < 10; ++k) {
-            ctx.time = 2.0 + 0.25 * k;
-            const std::vector<PersonForecast> people{walker(0, {0.5, 2.5}, {0, 0}, ctx.time)};
-            ctx.people = &people;
-            planner.keepFlying(ctx, Plan{}, 0);
-        }
-        ctx.time = 12.0;  // the walkway unseen for 10 s
         const std::vector<PersonForecast> nobody;
         ctx.people = &nobody;
         const Plan plan = planner.plan(ctx);
