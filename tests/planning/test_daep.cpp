@@ -523,14 +523,9 @@ TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
     }
 }
 
-/** An 8 x 4 x 2.5 m box (room over the people's heads) under a 2.7 m ceiling, seen from (2, 2, 1).
- */
+/** An 8 x 4 x 2.5 m box (room over the heads) under a 2.7 m ceiling, seen from (2, 2, 1). */
 struct TallRoom : ::testing::Test {
-    void SetUp() override {
-        map = test::makeMap(test::box(0, 0, 0, 8, 4, 2.5), 2.5);
-        const Aabb walls = test::box(-0.1, -0.1, -0.1, 8.1, 4.1, 2.7);
-        map->insertPointCloud(root, test::roomScan(walls, root, 0.5));
-    }
+    void SetUp() override { map = test::halfSeenRoom(2.5, 2.7); }
     const Eigen::Vector3d root{2.0, 2.0, 1.0};
     std::unique_ptr<mapping::ExplorationMap> map;
 };
@@ -589,9 +584,7 @@ TEST_F(TallRoom, WithPeopleFromTheCameraStopsAreRaisedOverTheirHeads) {
 
 TEST_F(TallRoom, WithGroundTruthPeopleOrNoRoomOverHeadsThePlanIsKept) {
     // Ground truth (auto is off), and a 2 m box (the drone at most 1.7 m high).
-    auto lowMap = test::makeMap(test::box(0, 0, 0, 8, 4, 2), 2.5);
-    lowMap->insertPointCloud(root,
-                             test::roomScan(test::box(-0.1, -0.1, -0.1, 8.1, 4.1, 2.1), root, 0.5));
+    const auto lowMap = test::halfSeenRoom(2.0, 2.1);
     for (std::uint64_t seed = 1; seed <= 3; ++seed)
         for (const auto& [m, lift, fromCamera] :
              {std::tuple{map.get(), "auto", false}, std::tuple{lowMap.get(), "true", true}}) {
@@ -642,9 +635,10 @@ TEST_F(TallRoom, AStopOverTheHeadsNeedsNoLookAtTheWalkwaysBehind) {
         ASSERT_FALSE(plan.waypoints.empty()) << plan.reason;
         const bool looked = plan.reason.rfind("look:", 0) == 0;
         EXPECT_EQ(looked, flag == "false") << plan.reason;
-        if (!looked)
+        if (!looked) {
             EXPECT_GE(plan.waypoints.front().pose.position.z(), planner.obstacles().clearedHeight())
                 << plan.reason;
+        }
     }
 }
 

@@ -10,9 +10,7 @@ namespace {
 /** An 8 x 4 x 2.5 m box under a 2.7 m ceiling, seen from (2, 2, 1); 2.1 m clears the heads. */
 struct OverHeads : ::testing::Test {
     void SetUp() override {
-        map = test::makeMap(test::box(0, 0, 0, 8, 4, 2.5), 2.5);
-        map->insertPointCloud(
-            root, test::roomScan(test::box(-0.1, -0.1, -0.1, 8.1, 4.1, 2.7), root, 0.5));
+        map = test::halfSeenRoom(2.5, 2.7);
         space.map = map.get();
         space.radius = 0.3;
         space.height = 2.1;

@@ -173,8 +173,8 @@ std::optional<BlindThreat> DaepPlanner::blindThreat(const PlanningContext& conte
     return threat;
 }
 
-const Waypoint* DaepPlanner::guardedStop(const PlanningContext& context, const Plan& plan) const {
-    if (!overHeadsHeight(context))
+const Waypoint* DaepPlanner::guardedStop(const Plan& plan) const {
+    if (!overHeadsHeight())
         return &plan.waypoints.front();
     // Flying over the heads, the first stop among the people is where they may come.
     for (const Waypoint& w : plan.waypoints)
@@ -184,7 +184,7 @@ const Waypoint* DaepPlanner::guardedStop(const PlanningContext& context, const P
 }
 
 bool DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
-    const Waypoint* stop = guardedStop(context, plan);
+    const Waypoint* stop = guardedStop(plan);
     const std::optional<BlindThreat> threat =
         looks_ < params_.blind.maxLooks && stop != nullptr
             ? blindThreat(context, stop->pose.position, stop->arrivalTime + params_.blind.stopTime)
@@ -280,9 +280,9 @@ struct Escape {
 
 }  // namespace
 
-std::optional<double> DaepPlanner::overHeadsHeight(const PlanningContext& context) const {
+std::optional<double> DaepPlanner::overHeadsHeight() const {
     const double height = obstacles_.clearedHeight() + kOverHeads;
-    if (!flyingOverHeads_ || height > shrink(context.explorationBox, params().robotRadius).max.z())
+    if (!flyingOverHeads_ || height > obstacles_.params().ceiling)
         return std::nullopt;
     return height;
 }
@@ -294,7 +294,7 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
     const double r = params().robotRadius;
     const Aabb box = shrink(context.explorationBox, r);
     const bool leavingBlocked = !map.isSegmentFree(from, from, r);
-    if (const std::optional<double> high = overHeadsHeight(context); high && *high > from.z()) {
+    if (const std::optional<double> high = overHeadsHeight(); high && *high > from.z()) {
         // Straight up, over the heads: there nobody, seen or not, can reach the drone.
         const Eigen::Vector3d up(from.x(), from.y(), *high);
         if (segmentFlyable(map, from, up, r, leavingBlocked) && !visit(up, context.pose.yaw, 0.0))
@@ -460,7 +460,7 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
 Plan DaepPlanner::overHeads(const PlanningContext& context, Plan plan) const {
     if (plan.status != Plan::Status::Path || plan.escape)
         return plan;
-    const std::optional<double> height = overHeadsHeight(context);
+    const std::optional<double> height = overHeadsHeight();
     if (!height)
         return plan;
     OverHeadsSpace space;

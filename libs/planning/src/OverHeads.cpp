@@ -15,6 +15,10 @@ constexpr double kShortLeg = 0.1;
  */
 constexpr double kLongFlightOverHeads = 2.0;
 
+bool isHigh(const OverHeadsSpace& space, const Eigen::Vector3d& p) {
+    return p.z() >= space.height - kLevel;
+}
+
 bool flyable(const OverHeadsSpace& space, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
              bool fromStart) {
     return segmentFlyable(*space.map, a, b, space.radius, fromStart && space.leavingBlocked);
@@ -31,7 +35,7 @@ bool raiseStops(const OverHeadsSpace& space, const Eigen::Vector3d& start,
         Eigen::Vector3d& stop = stops[k].pose.position;
         const Eigen::Vector3d up(stop.x(), stop.y(), space.height);
         const bool last = k + 1 == stops.size();
-        if (stop.z() < space.height - kLevel && flyable(space, at, up, fromStart) &&
+        if (!isHigh(space, stop) && flyable(space, at, up, fromStart) &&
             (last || flyable(space, up, stops[k + 1].pose.position, false))) {
             stop = up;
             any = true;
@@ -49,7 +53,7 @@ std::vector<Waypoint> stayHigh(const OverHeadsSpace& space, const Eigen::Vector3
     bool fromStart = true;
     for (const Waypoint& next : stops) {
         const Eigen::Vector3d& b = next.pose.position;
-        const bool aHigh = a.z() >= space.height - kLevel, bHigh = b.z() >= space.height - kLevel;
+        const bool aHigh = isHigh(space, a), bHigh = isHigh(space, b);
         const Eigen::Vector2d across = (b - a).head<2>();
         if (aHigh != bHigh && across.norm() > kShortLeg) {
             for (const double late : {1.0, 0.75, 0.5}) {
@@ -74,10 +78,10 @@ std::size_t beforeDescent(const OverHeadsSpace& space, const Eigen::Vector3d& st
     Eigen::Vector3d at = start;
     for (std::size_t k = 0; k < stops.size(); ++k) {
         const Eigen::Vector3d& p = stops[k].pose.position;
-        const bool high = p.z() >= space.height - kLevel;
+        const bool high = isHigh(space, p);
         if (!high && flown >= kLongFlightOverHeads)
             return k;
-        flown = high && at.z() >= space.height - kLevel ? flown + (p - at).head<2>().norm() : 0.0;
+        flown = high && isHigh(space, at) ? flown + (p - at).head<2>().norm() : 0.0;
         at = p;
     }
     return stops.size();

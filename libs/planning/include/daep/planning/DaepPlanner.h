@@ -177,19 +177,21 @@ private:
      * The stop of the plan the blind guard checks: the first; where stops are raised over the
      * heads, the first below them (none when the whole plan is flown over the heads).
      */
-    const Waypoint* guardedStop(const PlanningContext& context, const Plan& plan) const;
+    const Waypoint* guardedStop(const Plan& plan) const;
     /**
      * A path with its stops raised over the people's heads where the box, the known free space
      * and the predicted people allow; otherwise the path as it is.
      */
     Plan overHeads(const PlanningContext& context, Plan plan) const;
-    /** The height of stops over heads, when raising them is on and the box has room for it. */
-    std::optional<double> overHeadsHeight(const PlanningContext& context) const;
-
-    bool flyingOverHeads_ = false;  ///< flyOverHeads decided for the current context
+    /**
+     * The height of stops over heads, when raising them is on and the box (as the people were
+     * last observed with it) has room for it.
+     */
+    std::optional<double> overHeadsHeight() const;
 
     DaepParams params_;
-    bool guardingBlind_ = false;  ///< blindGuard decided for the current context
+    bool guardingBlind_ = false;    ///< blindGuard decided for the current context
+    bool flyingOverHeads_ = false;  ///< flyOverHeads decided for the current context
     BlindWatch watch_;
     int looks_ = 0;  ///< blind looks in a row
     DynamicObstacles obstacles_;
