@@ -134,12 +134,16 @@ inline std::unique_ptr<mapping::ExplorationMap> westKnown(double length, double 
     return map;
 }
 
+/** Where halfSeenRoom is seen from. */
+inline const Eigen::Vector3d kHalfSeenRoomEye{2.0, 2.0, 1.0};
+
 /**
  * An 8 x 4 m box `height` high, in a room whose walls stand 0.1 m outside it and whose
- * ceiling is at `ceiling`, seen from (2, 2, 1) out to 2.5 m: its western half (x < ~4.5).
+ * ceiling is at `ceiling`, seen from kHalfSeenRoomEye out to 2.5 m: its western half
+ * (x < ~4.5).
  */
 inline std::unique_ptr<mapping::ExplorationMap> halfSeenRoom(double height, double ceiling) {
-    const Eigen::Vector3d from(2.0, 2.0, 1.0);
+    const Eigen::Vector3d& from = kHalfSeenRoomEye;
     auto map = makeMap(box(0, 0, 0, 8, 4, height), 2.5);
     map->insertPointCloud(from, roomScan(box(-0.1, -0.1, -0.1, 8.1, 4.1, ceiling), from, 0.5));
     return map;
@@ -148,7 +152,7 @@ inline std::unique_ptr<mapping::ExplorationMap> halfSeenRoom(double height, doub
 /** An 8 x 4 x 2 m box whose western half (x < ~4.5) is seen from (2, 2, 1). */
 struct HalfKnownRoomMap : ::testing::Test {
     void SetUp() override { map = halfSeenRoom(2.0, 2.1); }
-    const Eigen::Vector3d root{2.0, 2.0, 1.0};
+    const Eigen::Vector3d root = kHalfSeenRoomEye;
     std::unique_ptr<mapping::ExplorationMap> map;
 };
 

@@ -524,10 +524,8 @@ TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
 }
 
 /** An 8 x 4 x 2.5 m box (room over the heads) under a 2.7 m ceiling, seen from (2, 2, 1). */
-struct TallRoom : ::testing::Test {
+struct TallRoom : test::HalfKnownRoomMap {
     void SetUp() override { map = test::halfSeenRoom(2.5, 2.7); }
-    const Eigen::Vector3d root{2.0, 2.0, 1.0};
-    std::unique_ptr<mapping::ExplorationMap> map;
 };
 
 /** The same plan made with fly_over_heads = `lift` and false: raised, and as planned. */

@@ -8,7 +8,7 @@ namespace daep::planning {
 namespace {
 
 /** An 8 x 4 x 2.5 m box under a 2.7 m ceiling, seen from (2, 2, 1); 2.1 m clears the heads. */
-struct OverHeads : ::testing::Test {
+struct OverHeads : test::HalfKnownRoomMap {
     void SetUp() override {
         map = test::halfSeenRoom(2.5, 2.7);
         space.map = map.get();
@@ -18,8 +18,6 @@ struct OverHeads : ::testing::Test {
     static Waypoint stop(double x, double y, double z, double yaw = 0.0) {
         return {{{x, y, z}, yaw}, 0.0};
     }
-    const Eigen::Vector3d root{2.0, 2.0, 1.0};
-    std::unique_ptr<mapping::ExplorationMap> map;
     OverHeadsSpace space;
 };
 
