@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
 
 #include "PlanningTestUtil.h"
 #include "daep/planning/DynamicFrequencyMap.h"
@@ -150,6 +153,43 @@ TEST(DynamicObstacles, PredictionsBeyondTheHorizonAreNotUsed) {
     EXPECT_EQ(people.bodiesAt(10.0).size(), 0u);
     ASSERT_EQ(people.bodiesAt(4.0).size(), 1u);
     EXPECT_TRUE(people.bodiesAt(4.0)[0].center.isApprox(Eigen::Vector2d(-3.5 + 1.4, 0)));
+}
+
+/**
+ * isSafe takes shortcuts (the largest body first, the last blocking walker first); its answer
+ * must stay clearance(move) > 0, the full check of every walker, call after call.
+ */
+TEST(DynamicObstacles, IsSafeIsTheSignOfTheFullClearanceWhateverTheOrderOfCalls) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> where(-6.0, 6.0), speed(-0.5, 0.5), when(0.0, 12.0);
+    std::vector<PersonForecast> people;
+    for (int i = 0; i < 12; ++i) {
+        PersonForecast f = walker(i, {where(rng), where(rng)}, {speed(rng), speed(rng)},
+                                  i % 3 == 0 ? when(rng) : 0.0);
+        f.covariance.diagonal() << 0.02 * i, 0.01 * i, 0.03, 0.05;
+        f.covariance(0, 2) = f.covariance(2, 0) = -0.004 * i;  // position-velocity correlation
+        f.accelNoise = 0.02;
+        people.push_back(f);
+    }
+    for (const double cap : {1.0, 0.0, std::numeric_limits<double>::infinity()}) {
+        SafetyParams s;
+        s.maxInflation = cap;
+        s.ceiling = 2.5;
+        const DynamicObstacles bodies(s, people);
+        int unsafe = 0;
+        for (int i = 0; i < 4000; ++i) {
+            const FlatPose a{{where(rng), where(rng), 0.5 + 0.5 * std::abs(speed(rng)) * 6}, 0.0};
+            const FlatPose b{a.position + Eigen::Vector3d(speed(rng), speed(rng), 0) * 4, 1.0};
+            const TimedSegment move = timedSegment(a, b, when(rng), 0.5, 1.0);
+            for (const double scale : {1.0, 0.5}) {
+                const bool safe = bodies.isSafe(move, scale);
+                ASSERT_EQ(safe, bodies.clearance(move, scale) > 0.0) << i;
+                unsafe += !safe;
+            }
+        }
+        EXPECT_GT(unsafe, 400);  // both answers are exercised
+        EXPECT_LT(unsafe, 7600);
+    }
 }
 
 TEST(RayEntry, MeetsTheCylinderWhereGeometrySaysItShould) {

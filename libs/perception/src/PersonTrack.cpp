@@ -159,7 +159,7 @@ PositionPrediction PersonForecast::at(double t) const {
     const double dt = std::max(0.0, t - time);
     PositionPrediction out;
     out.time = t;
-    out.mean = state.head<2>() + dt * state.tail<2>();
+    out.mean = meanAt(t);
     const Eigen::Matrix2d pp = covariance.topLeftCorner<2, 2>();
     const Eigen::Matrix2d pv = covariance.topRightCorner<2, 2>();
     const Eigen::Matrix2d vv = covariance.bottomRightCorner<2, 2>();

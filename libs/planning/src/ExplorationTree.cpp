@@ -89,10 +89,12 @@ int ExplorationTree::extend(const Eigen::Vector3d& sample) {
             ? parts_.view->viewOnArrival(cheapest.position, p,
                                          parts_.flight->reachTime(from, cheapest.time, p), false)
             : YawGain{headingTowards(cheapest.position, p, cheapest.yaw), 0.0};
+    // Both checks are pure, so the cheap one with people goes first: where walkers block a
+    // tree, nearly every move fails it.
     int parent = -1;
     for (std::size_t k = first; k < candidates.size() && parent < 0; ++k) {
         const int i = candidates[k].second;
-        if ((k == first || edgeValid(i, p)) && timedValidFrom(i, {p, view.yaw}))
+        if (timedValidFrom(i, {p, view.yaw}) && (k == first || edgeValid(i, p)))
             parent = i;
     }
     if (parent < 0)
@@ -112,8 +114,8 @@ void ExplorationTree::rewireThrough(int added,
             continue;
         const TreeNode& other = tree_.node(q);
         const double through = tree_.node(added).cost + (other.position - p).norm();
-        if (through < other.cost - 1e-9 && edgeValid(added, other.position) &&
-            timedValidFrom(added, {other.position, other.yaw}))
+        if (through < other.cost - 1e-9 && timedValidFrom(added, {other.position, other.yaw}) &&
+            edgeValid(added, other.position))
             rewire(q, added);
     }
 }

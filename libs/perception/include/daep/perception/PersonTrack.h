@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
 
 namespace daep::perception {
@@ -39,6 +40,11 @@ struct PersonForecast {
 
     /** Position distribution at `t` (clamped to >= time): the CV model's prediction. */
     PositionPrediction at(double t) const;
+    /** at(t).mean alone, bit for bit. */
+    Eigen::Vector2d meanAt(double t) const {
+        const double dt = std::max(0.0, t - time);
+        return state.head<2>() + dt * state.tail<2>();
+    }
     Eigen::Vector2d velocity() const { return state.tail<2>(); }
 };
 

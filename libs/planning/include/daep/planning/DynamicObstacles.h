@@ -97,11 +97,15 @@ private:
     double keepOutRadius(const perception::PositionPrediction& at, double clearanceScale) const;
     double gapTo(const perception::PersonForecast& person, const TimedSegment& move,
                  double clearanceScale) const;
+    /** gapTo(person, move) <= 0, faster for walkers far from the move. */
+    bool blocks(const perception::PersonForecast& person, const TimedSegment& move,
+                double clearanceScale) const;
 
     SafetyParams params_;
     std::vector<perception::PersonForecast> people_;
-    double bodyRadius_ = 0.0;  ///< person footprint half diagonal + drone half diagonal
-    double bodyTop_ = 0.0;     ///< drone centres below this can touch a body
+    double bodyRadius_ = 0.0;              ///< person footprint half diagonal + drone half diagonal
+    double bodyTop_ = 0.0;                 ///< drone centres below this can touch a body
+    mutable std::size_t lastBlocker_ = 0;  ///< isSafe's first walker to ask (one thread)
 };
 
 }  // namespace daep::planning
