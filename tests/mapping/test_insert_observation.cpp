@@ -201,32 +201,38 @@ TEST(InsertObservation, NoReturnPixelsClearTheirRaysOnlyWhenAskedTo) {
     EXPECT_TRUE(mixed.isUnknown({4.0, 0.0, 0.0}));
 }
 
+/** The per-row pixel pass against the cloud unprojectDepthImage gives, depth and range images. */
 TEST(InsertObservation, EqualsInsertingTheUnprojectedCloud) {
-    auto obs = makeFrame(96, 72, 3.0, mrpt::poses::CPose3D(0.1, 0, 0.1, 0, 0.1, 0));
-    std::mt19937 rng(77);
-    std::uniform_int_distribution<int> depthMm(0, 7000);
-    for (int r = 0; r < 72; ++r) {
-        for (int c = 0; c < 96; ++c) {
-            const int d = depthMm(rng);
-            obs.rangeImage(r, c) = std::uint16_t(d < 400 ? 0 : (r / 8) * 300 + d / 10 + 1500);
+    for (const bool rangeIsDepth : {true, false}) {
+        auto obs = makeFrame(96, 72, 3.0, mrpt::poses::CPose3D(0.1, 0, 0.1, 0, 0.1, 0));
+        obs.range_is_depth = rangeIsDepth;
+        std::mt19937 rng(77);
+        std::uniform_int_distribution<int> depthMm(0, 7000);
+        for (int r = 0; r < 72; ++r) {
+            for (int c = 0; c < 96; ++c) {
+                const int d = depthMm(rng);
+                obs.rangeImage(r, c) = std::uint16_t(d < 400 ? 0 : (r / 8) * 300 + d / 10 + 1500);
+            }
         }
-    }
-    Aabb box;
-    box.min = {-6, -6, -3};
-    box.max = {6, 6, 4};
-    const FlatPose robot = makePose(0.4, 0.3, 1.0, 0.5);
-    MapParams returnsOnly;  // the cloud holds the pixels with a return only
-    returnsOnly.noReturnIsFree = false;
-    ExplorationMap a(returnsOnly, box), b(returnsOnly, box);
-    a.insertObservation(obs, robot);
-    const mrpt::poses::CPose3D sensor =
-        mrpt::poses::CPose3D(0.4, 0.3, 1.0, 0.5, 0, 0) + obs.sensorPose;
-    b.insertPointCloud({sensor.x(), sensor.y(), sensor.z()}, unprojectDepthImage(obs, robot));
-    EXPECT_EQ(a.knownCellsInBox(), b.knownCellsInBox());
-    std::uniform_real_distribution<double> u(-6.0, 6.0);
-    for (int i = 0; i < 100000; ++i) {
-        const Eigen::Vector3d p(u(rng), u(rng), 0.5 * u(rng));
-        ASSERT_EQ(a.state(p), b.state(p)) << p.transpose();
+        Aabb box;
+        box.min = {-6, -6, -3};
+        box.max = {6, 6, 4};
+        const FlatPose robot = makePose(0.4, 0.3, 1.0, 0.5);
+        MapParams returnsOnly;  // the cloud holds the pixels with a return only
+        returnsOnly.noReturnIsFree = false;
+        ExplorationMap a(returnsOnly, box), b(returnsOnly, box);
+        a.insertObservation(obs, robot);
+        const mrpt::poses::CPose3D sensor =
+            mrpt::poses::CPose3D(0.4, 0.3, 1.0, 0.5, 0, 0) + obs.sensorPose;
+        b.insertPointCloud({sensor.x(), sensor.y(), sensor.z()}, unprojectDepthImage(obs, robot));
+        EXPECT_EQ(a.knownCellsInBox(), b.knownCellsInBox());
+        EXPECT_GT(a.knownCellsInBox(), 1000u);
+        std::uniform_real_distribution<double> u(-6.0, 6.0);
+        for (int i = 0; i < 100000; ++i) {
+            const Eigen::Vector3d p(u(rng), u(rng), 0.5 * u(rng));
+            ASSERT_EQ(a.state(p), b.state(p))
+                << p.transpose() << " range is depth " << rangeIsDepth;
+        }
     }
 }
 

@@ -9,6 +9,7 @@
 #include <octomap/OcTree.h>
 
 #include "OctreeKeys.h"
+#include "daep/mapping/DenseGridIndex.h"
 
 namespace daep::mapping {
 namespace {
@@ -46,6 +47,37 @@ TEST(OctreeAxisKey, IsOctomapsKeyOnAndOffCellBoundaries) {
         EXPECT_FALSE(octreeAxisKey(scale, std::numeric_limits<double>::infinity(), k));
         EXPECT_FALSE(octreeAxisKey(scale, -1e300, k));
     }
+}
+
+/** The unchecked index of points on the grid is the checked one; rays test their ends only. */
+TEST(DenseGridIndex, OnGridIsTheCheckedIndexAndRaysBetweenOnGridEndsStayOnIt) {
+    const DenseGridIndex grid(1.0 / 0.2, {-60, -45, -3}, {120, 90, 25});
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-14.0, 14.0), z(-1.0, 5.5), unit(-1.0, 1.0);
+    int onGrid = 0, rays = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Eigen::Vector3d p(u(rng), u(rng), z(rng));
+        if (grid(p) >= 0) {
+            ++onGrid;
+            ASSERT_EQ(grid.onGrid(p), grid(p));
+        }
+        const Eigen::Vector3d d = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+        const Eigen::Vector3d first = p + 0.1 * d, last = p + 4.9 * d;
+        if (grid(first) < 0 || grid(last) < 0)
+            continue;
+        ++rays;
+        for (int k = 0; k < 25; ++k) {
+            const Eigen::Vector3d s = p + (k + 0.5) * 0.2 * d;
+            ASSERT_GE(grid(s), 0);
+            ASSERT_EQ(grid.onGrid(s), grid(s));
+        }
+    }
+    EXPECT_GT(onGrid, 5000);
+    EXPECT_GT(rays, 2000);
+    const Eigen::Vector3d edge(-12.0, -9.0, -0.6);  // the lowest corner: on the grid
+    EXPECT_EQ(grid(edge), 0);
+    EXPECT_EQ(grid(Eigen::Vector3d(std::nextafter(-12.0, -13.0), -9.0, -0.6)), -1);
+    EXPECT_EQ(grid(Eigen::Vector3d(12.0, 0.0, 0.0)), -1);  // high bounds are open
 }
 
 }  // namespace

@@ -64,12 +64,11 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
             inBox[a][std::size_t(i)] = c >= box.min[a] && c < box.max[a];
         }
     }
-    pointIndex.dims = dims;
     const int keyOfZero = tree.coordToKey(0.0);
-    for (std::size_t a = 0; a < 3; ++a) {
-        pointIndex.low[a] = int(gridMin[a]) - keyOfZero;
-        pointIndex.high[a] = pointIndex.low[a] + dims[a];
-    }
+    std::array<int, 3> low{};
+    for (std::size_t a = 0; a < 3; ++a)
+        low[a] = int(gridMin[a]) - keyOfZero;
+    pointIndex = DenseGridIndex(pointIndex.scale, low, dims);
     if (total > kMaxGridCells) {
         std::ostringstream err;
         err << "exploration box needs " << total << " cells at resolution " << params.resolution
@@ -140,18 +139,30 @@ void ExplorationMap::Impl::markRay(const octomap::point3d& origin, const octomap
         tNext[a] = (border - origin(unsigned(a))) / dir(unsigned(a));
         tDelta[a] = res / std::fabs(dir(unsigned(a)));
     }
+    // The walk with its state in registers: one branch per axis instead of indexed arrays.
     const std::array<std::int64_t, 3> stride{1, dims[0], std::int64_t(dims[0]) * dims[1]};
+    double tx = tNext[0], ty = tNext[1], tz = tNext[2];
     std::int64_t index = gridIndex(key);  // stepped along while the walk stays on the grid
-    for (;;) {
-        index >= 0 ? markCell(index, kFreeNow) : markOutside(key, kFreeNow);
-        const std::size_t a =
-            tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
+    const auto stepAxis = [&](std::size_t a, double& t) {
         key[a] = octomap::key_type(key[a] + step[a]);
-        tNext[a] += tDelta[a];
-        if (key == last || std::min(std::min(tNext[0], tNext[1]), tNext[2]) > length)
-            return;
+        t += tDelta[a];
         const int c = int(key[a]) - int(gridMin[a]);
         index = index >= 0 && c >= 0 && c < dims[a] ? index + step[a] * stride[a] : gridIndex(key);
+    };
+    for (;;) {
+        index >= 0 ? markCell(index, kFreeNow) : markOutside(key, kFreeNow);
+        if (tx < ty) {
+            if (tx < tz)
+                stepAxis(0, tx);
+            else
+                stepAxis(2, tz);
+        } else if (ty < tz) {
+            stepAxis(1, ty);
+        } else {
+            stepAxis(2, tz);
+        }
+        if (key == last || std::min(std::min(tx, ty), tz) > length)
+            return;
     }
 }
 

@@ -23,17 +23,42 @@ struct DenseGridIndex {
     std::array<int, 3> low{}, high{};
     std::array<int, 3> dims{};
 
+    DenseGridIndex() = default;
+    DenseGridIndex(double scale, const std::array<int, 3>& low, const std::array<int, 3>& dims)
+        : scale(scale), low(low), dims(dims) {
+        for (std::size_t a = 0; a < 3; ++a) {
+            high[a] = low[a] + dims[a];
+            lowBound_[a] = low[a];
+            highBound_[a] = high[a];
+        }
+    }
+
     /** Index of the cell containing p, or -1 outside the grid (also for NaN). */
     std::int64_t operator()(const Eigen::Vector3d& p) const {
         std::array<int, 3> i{};
         for (std::size_t a = 0; a < 3; ++a) {
             const double v = p[Eigen::Index(a)] * scale;
-            if (!(v >= low[a] && v < high[a]))
+            if (!(v >= lowBound_[a] && v < highBound_[a]))
                 return -1;
             i[a] = floorToInt(v) - low[a];
         }
         return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
     }
+
+    /**
+     * operator()'s index for a point known to lie on the grid. Points p + r * d of one ray
+     * (r ascending) are computed monotonically on each axis, so when the first and the last lie
+     * on the grid, all between do.
+     */
+    std::int64_t onGrid(const Eigen::Vector3d& p) const {
+        std::array<int, 3> i{};
+        for (std::size_t a = 0; a < 3; ++a)
+            i[a] = floorToInt(p[Eigen::Index(a)] * scale) - low[a];
+        return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
+    }
+
+private:
+    std::array<double, 3> lowBound_{}, highBound_{};  ///< low and high, converted once
 };
 
 }  // namespace daep::mapping

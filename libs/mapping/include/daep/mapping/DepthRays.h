@@ -30,6 +30,8 @@ public:
     int cols() const { return int(left_.size()); }
     /** The ray's left offset per metre of depth, for a column of the image. */
     float left(int col) const { return left_[std::size_t(col)]; }
+    /** left(col) of every column, in order. */
+    const float* lefts() const { return left_.data(); }
     /** The ray's up offset per metre of depth, for a row of the image. */
     float up(int row) const { return up_[std::size_t(row)]; }
     /** The same for any column or row, inside the image or not. */
@@ -48,6 +50,8 @@ public:
     float depthOf(float range, float left, float up) const {
         return rangeIsDepth_ ? range : range / std::sqrt(1.0f + left * left + up * up);
     }
+    /** depthOf(range, ...) is the range itself. */
+    bool rangeIsDepth() const { return rangeIsDepth_; }
     /** Depth of pixel (row, col); 0 or less for no return. */
     float depth(int row, int col) const;
 

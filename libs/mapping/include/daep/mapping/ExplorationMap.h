@@ -92,6 +92,12 @@ public:
         const std::int64_t i = gridIndex_(p);
         return i >= 0 ? CellState(gridCells_[i]) : stateOffGrid(p);
     }
+    /** Whether p lies on the dense grid, where stateOnGrid(p) may be asked. */
+    bool onGrid(const Eigen::Vector3d& p) const { return gridIndex_(p) >= 0; }
+    /** state(p) of a point on the dense grid (see DenseGridIndex::onGrid). */
+    CellState stateOnGrid(const Eigen::Vector3d& p) const {
+        return CellState(gridCells_[gridIndex_.onGrid(p)]);
+    }
     bool isFree(const Eigen::Vector3d& p) const { return state(p) == CellState::Free; }
     bool isOccupied(const Eigen::Vector3d& p) const { return state(p) == CellState::Occupied; }
     bool isUnknown(const Eigen::Vector3d& p) const { return state(p) == CellState::Unknown; }
