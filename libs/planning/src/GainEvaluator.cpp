@@ -141,20 +141,30 @@ std::pair<double, double> GainEvaluator::columnGains(
         if (occluders)
             for (const BodyOccluder& body : *occluders)
                 occludedEnd = std::min(occludedEnd, rayEntry(body, p, dir));
+        const std::vector<double>& radii = cubature_.radii;
+        const std::size_t shells =
+            std::size_t(std::upper_bound(radii.begin(), radii.end(), end) - radii.begin());
         double ray = 0.0, occludedRay = 0.0;
         bool stoppedByBody = false;
-        for (std::size_t k = 0; k < cubature_.radii.size() && cubature_.radii[k] <= end; ++k) {
-            if (!stoppedByBody && cubature_.radii[k] > occludedEnd) {
-                occludedRay = ray;
-                stoppedByBody = true;
+        const auto march = [&](const auto& stateAt) {
+            for (std::size_t k = 0; k < shells; ++k) {
+                if (!stoppedByBody && radii[k] > occludedEnd) {
+                    occludedRay = ray;
+                    stoppedByBody = true;
+                }
+                const Eigen::Vector3d s = p + radii[k] * dir;
+                const mapping::CellState state = stateAt(s);
+                if (state == mapping::CellState::Occupied)
+                    break;
+                if (state == mapping::CellState::Unknown)
+                    ray += cubature_.shellWeights[k] * (boosted ? yawAngleBoost(box, s) : 1.0);
             }
-            const Eigen::Vector3d s = p + cubature_.radii[k] * dir;
-            const mapping::CellState state = map.state(s);
-            if (state == mapping::CellState::Occupied)
-                break;
-            if (state == mapping::CellState::Unknown)
-                ray += cubature_.shellWeights[k] * (boosted ? yawAngleBoost(box, s) : 1.0);
-        }
+        };
+        // A ray whose first and last samples lie on the map's dense grid lies on it whole.
+        if (shells > 0 && map.onGrid(p + radii[0] * dir) && map.onGrid(p + radii[shells - 1] * dir))
+            march([&map](const Eigen::Vector3d& s) { return map.stateOnGrid(s); });
+        else
+            march([&map](const Eigen::Vector3d& s) { return map.state(s); });
         gain += cubature_.ringWeights[j] * ray;
         occludedGain += cubature_.ringWeights[j] * (stoppedByBody ? occludedRay : ray);
     }
