@@ -6,8 +6,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <random>
 #include <vector>
 
+#include "DepthQuantise.h"
 #include "SimTestWorlds.h"
 #include "daep/sim/DepthCamera.h"
 #include "daep/world/RayCaster.h"
@@ -323,6 +326,51 @@ TEST(DepthCamera, LongRangesStillFitTheImage) {
     camera.render(scene, pose(0, 0, 1, 0), 0.0, rng, obs);
     EXPECT_GT(obs.rangeUnits, 1e-3f);
     EXPECT_NEAR(obs.rangeImage(24, 32) * obs.rangeUnits, 80.0, obs.rangeUnits);
+}
+
+/** quantiseDepth is clamp(std::round(depth / units), 1, 65535), bit for bit. */
+TEST(DepthCamera, QuantiseRoundsAsStdRound) {
+    const auto reference = [](float depth, float units) -> std::uint16_t {
+        if (depth <= 0.0f)
+            return 0;
+        return std::uint16_t(std::clamp(std::round(depth / units), 1.0f, 65535.0f));
+    };
+    std::vector<float> depths = {1e-9f,
+                                 2.5e-4f,
+                                 4.9999997e-4f,
+                                 5e-4f,
+                                 5.0000006e-4f,
+                                 1.5e-3f,
+                                 2.5e-3f,
+                                 65.5345f,
+                                 65.5349f,
+                                 65.535f,
+                                 65.6f,
+                                 1e6f,
+                                 std::numeric_limits<float>::max(),
+                                 std::numeric_limits<float>::infinity(),
+                                 0.0f,
+                                 -1.0f};
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> anywhere(0.0f, 70.0f);
+    for (int i = 0; i < 200000; ++i)
+        depths.push_back(anywhere(rng));
+    for (const float units : {1e-3f, 1.6e-3f, 0.37f})
+        for (const float d : depths)
+            ASSERT_EQ(quantiseDepth(d, units), reference(d, units)) << d << " m in " << units;
+    // Every float within 64 steps of each half-step, where rounding decides.
+    for (float half = 0.5f; half < 65536.0f;
+         half = half < 64.0f ? half + 1.0f : std::floor(half * 1.5f) + 0.5f) {
+        float x = half;
+        for (int i = 0; i < 64; ++i)
+            x = std::nextafter(x, 0.0f);
+        for (int i = 0; i < 128; ++i, x = std::nextafter(x, 1e9f))
+            ASSERT_EQ(quantiseDepth(x, 1.0f), reference(x, 1.0f)) << x;
+    }
+    // Halves round away from zero: 0.5 -> 1, 1.5 -> 2, 2.5 -> 3, and just below 0.5 -> 0 (then 1).
+    EXPECT_EQ(quantiseDepth(2.5f, 1.0f), 3);
+    EXPECT_EQ(quantiseDepth(1.5f, 1.0f), 2);
+    EXPECT_EQ(quantiseDepth(2.4999998f, 1.0f), 2);
 }
 
 TEST(DepthCamera, RejectsBadParameters) {

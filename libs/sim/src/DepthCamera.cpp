@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "DepthQuantise.h"
 #include "GaussianSampler.h"
 #include "daep/common/ConfigChecks.h"
 #include "daep/common/Error.h"
@@ -39,16 +40,6 @@ void validate(const CameraParams& p) {
 float rangeUnitsFor(double maxRange) {
     const double needed = maxRange * kNoiseHeadroom / std::numeric_limits<uint16_t>::max();
     return static_cast<float>(std::max(kRangeUnits, needed));
-}
-
-uint16_t quantise(float depth, float units) {
-    if (depth <= 0.0f) {
-        return 0;
-    }
-    const float steps = std::round(depth / units);
-    const float maxSteps = std::numeric_limits<uint16_t>::max();
-    // A return never becomes "no return" through rounding or noise.
-    return static_cast<uint16_t>(std::clamp(steps, 1.0f, maxSteps));
 }
 
 mrpt::img::TCamera intrinsics(const CameraParams& p) {
@@ -142,7 +133,7 @@ void DepthCamera::render(const world::RayCaster& scene, const FlatPose& drone, d
     obs.rangeImage_setSize(params_.height, params_.width);
     uint16_t* pixels = obs.rangeImage.data();
     for (std::size_t i = 0; i < depth.size(); ++i) {
-        pixels[i] = quantise(depth[i], units);
+        pixels[i] = quantiseDepth(depth[i], units);
     }
     obs.hasRangeImage = true;
     obs.range_is_depth = true;
