@@ -2,6 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
+#include <utility>
+#include <vector>
 
 #include "daep/planning/ExplorationTree.h"
 #include "daep/planning/FlightModel.h"
@@ -89,6 +93,44 @@ struct TreeOverParts : ::testing::Test {
 };
 
 const Eigen::Vector3d kAbove(2, 3, 1), kTarget(4, 0, 1), kBehind(6, 0, 1), kShortcut(2, 1.5, 1);
+
+/** The tree's distance scans against Eigen's own arithmetic over the nodes, bit for bit. */
+TEST(Tree, NearestAndNeighboursAreEigensDistancesBitForBit) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(-4.0, 4.0);
+    Tree tree;
+    tree.reset({{0.1, 0.2, 1.0}, 0.0});
+    for (int i = 0; i < 400; ++i) {
+        Eigen::Vector3d p(u(rng), u(rng), 0.25 * u(rng));
+        if (i % 7 == 0)
+            p = tree.node(i / 2).position;  // ties: the lowest index wins
+        tree.add(std::max(0, i / 3), p, 0.0);
+    }
+    for (int q = 0; q < 2000; ++q) {
+        const Eigen::Vector3d p = q % 5 == 0 ? tree.node(q % tree.size()).position
+                                             : Eigen::Vector3d(u(rng), u(rng), u(rng));
+        int best = -1;
+        double bestD2 = std::numeric_limits<double>::infinity();
+        std::vector<std::pair<int, double>> within;
+        const double radius = q % 3 == 0 ? 1.5 : (p - tree.node(q % 50).position).norm();
+        for (int i = 0; i < tree.size(); ++i) {
+            const double d2 = (tree.node(i).position - p).squaredNorm();
+            if (d2 < bestD2) {
+                bestD2 = d2;
+                best = i;
+            }
+        }
+        for (int i = 0; i < tree.size(); ++i) {
+            const double d = (tree.node(i).position - p).norm();
+            if (i == best || d <= radius)
+                within.push_back({i, d});
+        }
+        ASSERT_EQ(tree.nearest(p), best);
+        std::vector<std::pair<int, double>> found;
+        tree.forEachNear(p, radius, best, [&](int i, double d) { found.push_back({i, d}); });
+        ASSERT_EQ(found, within) << "query " << q;  // doubles compared exactly
+    }
+}
 
 TEST_F(TreeOverParts, ARewireShortensTheWayWhenNothingItReTimesMeetsAPerson) {
     walls.from = walls.to = -1.0;  // nobody

@@ -69,11 +69,8 @@ int ExplorationTree::extend(const Eigen::Vector3d& sample) {
     if (!box_.contains(p) || !parts_.moves->staticValid(p, p, false))
         return -1;
     std::vector<std::pair<double, int>> candidates;  // (cost through it, node)
-    for (int i = 0; i < tree_.size(); ++i) {
-        const double d = (tree_.node(i).position - p).norm();
-        if (i == nearest || d <= rewireRadius_)
-            candidates.emplace_back(tree_.node(i).cost + d, i);
-    }
+    tree_.forEachNear(p, rewireRadius_, nearest,
+                      [&](int i, double d) { candidates.emplace_back(tree_.node(i).cost + d, i); });
     std::sort(candidates.begin(), candidates.end());
     std::size_t first = 0;
     while (first < candidates.size() && !edgeValid(candidates[first].second, p))

@@ -8,10 +8,20 @@ namespace daep::planning {
 
 void Tree::reset(const FlatPose& root) {
     nodes_.clear();
+    xs_.clear();
+    ys_.clear();
+    zs_.clear();
     TreeNode node;
     node.position = root.position;
     node.yaw = root.yaw;
+    append(node);
+}
+
+void Tree::append(const TreeNode& node) {
     nodes_.push_back(node);
+    xs_.push_back(node.position.x());
+    ys_.push_back(node.position.y());
+    zs_.push_back(node.position.z());
 }
 
 int Tree::add(int parent, const Eigen::Vector3d& position, double yaw) {
@@ -20,7 +30,7 @@ int Tree::add(int parent, const Eigen::Vector3d& position, double yaw) {
     node.yaw = yaw;
     node.parent = parent;
     node.cost = nodes_[parent].cost + (position - nodes_[parent].position).norm();
-    nodes_.push_back(node);
+    append(node);
     return size() - 1;
 }
 
@@ -28,7 +38,7 @@ int Tree::nearest(const Eigen::Vector3d& p) const {
     int best = -1;
     double bestDistance = std::numeric_limits<double>::infinity();
     for (int i = 0; i < size(); ++i) {
-        const double d = (nodes_[i].position - p).squaredNorm();
+        const double d = squaredDistance(i, p);
         if (d < bestDistance) {
             bestDistance = d;
             best = i;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 #include "daep/common/Types.h"
@@ -19,7 +20,11 @@ struct TreeNode {
     double time = 0.0;   ///< expected arrival time (absolute, s): turn then fly from the parent
 };
 
-/** A rooted tree of viewpoints; nodes are only appended, so indices stay valid. */
+/**
+ * A rooted tree of viewpoints; nodes are only appended, so indices stay valid. A node's
+ * position never changes once added: the tree keeps a copy of the positions, axis by axis, for
+ * its distance scans.
+ */
 class Tree {
 public:
     /** Drops all nodes and starts over from `root`. */
@@ -30,6 +35,24 @@ public:
 
     /** Index of the node closest to p (lowest index on ties). */
     int nearest(const Eigen::Vector3d& p) const;
+
+    /**
+     * Calls near(i, distance) in index order for node `always` and every node within `radius`
+     * of p; distance is (position - p).norm(), bit for bit.
+     */
+    template <class Near>
+    void forEachNear(const Eigen::Vector3d& p, double radius, int always, const Near& near) const {
+        // The squared test with a margin, then the exact one on the distance itself.
+        const double loose = radius * radius * (1.0 + 1e-9);
+        for (int i = 0; i < size(); ++i) {
+            const double d2 = squaredDistance(i, p);
+            if (i != always && !(d2 <= loose))
+                continue;
+            const double d = std::sqrt(d2);
+            if (i == always || d <= radius)
+                near(i, d);
+        }
+    }
 
     /** Non-root node with the highest score, or -1 when the tree is only its root. */
     int bestByScore() const;
@@ -45,7 +68,16 @@ public:
     int size() const { return static_cast<int>(nodes_.size()); }
 
 private:
+    /** (position - p).squaredNorm() of node i, in Eigen's order: (x^2 + y^2) + z^2. */
+    double squaredDistance(int i, const Eigen::Vector3d& p) const {
+        const double dx = xs_[std::size_t(i)] - p.x(), dy = ys_[std::size_t(i)] - p.y(),
+                     dz = zs_[std::size_t(i)] - p.z();
+        return (dx * dx + dy * dy) + dz * dz;
+    }
+    void append(const TreeNode& node);
+
     std::vector<TreeNode> nodes_;
+    std::vector<double> xs_, ys_, zs_;  ///< node positions, contiguous per axis
 };
 
 }  // namespace daep::planning
