@@ -2,7 +2,6 @@
 #include <cstdint>
 
 #include <algorithm>
-#include <stdexcept>
 
 #include "DepthPixels.h"
 #include "MapImpl.h"
@@ -13,6 +12,10 @@ namespace daep::mapping {
 namespace {
 
 constexpr std::uint64_t kNoKey = ~std::uint64_t(0);
+
+std::uint64_t pack(const octomap::OcTreeKey& k) {
+    return std::uint64_t(k[0]) | std::uint64_t(k[1]) << 16 | std::uint64_t(k[2]) << 32;
+}
 
 }  // namespace
 
@@ -53,8 +56,11 @@ std::vector<Eigen::Vector3f> unprojectDepthImage(const mrpt::obs::CObservation3D
                                                  const FlatPose& robot) {
     std::vector<Eigen::Vector3f> points;
     points.reserve(std::size_t(obs.rangeImage.rows() * obs.rangeImage.cols()));
-    forEachDepthPoint(obs, sensorFrameInWorld(obs, robot),
-                      [&points](int, int, const Eigen::Vector3f& p) { points.push_back(p); });
+    forEachDepthRow(obs, sensorFrameInWorld(obs, robot), [&points](int, const DepthRow& row) {
+        for (std::size_t u = 0; u < row.returned.size(); ++u)
+            if (row.returned[u])
+                points.emplace_back(row.x[u], row.y[u], row.z[u]);
+    });
     return points;
 }
 
@@ -62,71 +68,6 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
                                        const FlatPose& robot) {
     insertObservation(obs, robot, {});
 }
-
-namespace {
-
-/**
- * One image row's pixels as world points and packed octree keys (kNoKey where the pixel has no
- * return or its point lies outside the tree), a pass at a time over arrays (the points' pass
- * vectorizes): the arithmetic of forEachDepthPoint and of the octree's key, bit for bit.
- */
-struct DepthRow {
-    std::vector<float> x, y, z;
-    std::vector<std::uint64_t> key;
-
-    void compute(const std::uint16_t* pixels, float units, const DepthRays& rays, int row,
-                 const SensorFrame& frame, double scale) {
-        const std::size_t n = std::size_t(rays.cols());
-        x.resize(n);
-        y.resize(n);
-        z.resize(n);
-        key.resize(n);
-        const float kz = rays.up(row);
-        const Eigen::Vector3f rowDir = frame.forward + kz * frame.up;
-        const Eigen::Vector3f& o = frame.origin;
-        const Eigen::Vector3f& l = frame.left;
-        const float* left = rays.lefts();
-        for (std::size_t u = 0; u < n; ++u) {
-            x[u] = float(pixels[u]) * units;
-            key[u] = x[u] > 0.0f ? 0 : kNoKey;
-        }
-        if (!rays.rangeIsDepth())
-            for (std::size_t u = 0; u < n; ++u)
-                x[u] = rays.depthOf(x[u], left[u], kz);
-        for (std::size_t u = 0; u < n; ++u) {
-            const float d = x[u], kyu = left[u];
-            x[u] = o.x() + d * (rowDir.x() + kyu * l.x());
-            y[u] = o.y() + d * (rowDir.y() + kyu * l.y());
-            z[u] = o.z() + d * (rowDir.z() + kyu * l.z());
-        }
-        axisKeys(scale, x.data(), 0, n);
-        axisKeys(scale, y.data(), 16, n);
-        axisKeys(scale, z.data(), 32, n);
-    }
-
-    /**
-     * One axis of the octree keys (octreeAxisKey's arithmetic), shifted into key[]; a pixel
-     * without a return or a point outside the tree gets kNoKey.
-     */
-    void axisKeys(double scale, const float* c, int shift, std::size_t n) {
-        constexpr double kHalfSpan = 32768.0;
-        for (std::size_t u = 0; u < n; ++u) {
-            const double v = scale * double(c[u]);
-            const bool inside = v >= -kHalfSpan && v < kHalfSpan;
-            const double w = inside ? v : 0.0;  // int(v) must not overflow
-            const std::uint64_t k = std::uint32_t(floorToInt(w) + int(kHalfSpan));
-            key[u] = inside ? key[u] | k << shift : kNoKey;
-        }
-    }
-};
-
-octomap::OcTreeKey unpack(std::uint64_t packed) {
-    return octomap::OcTreeKey(octomap::key_type(packed & 0xffff),
-                              octomap::key_type(packed >> 16 & 0xffff),
-                              octomap::key_type(packed >> 32 & 0xffff));
-}
-
-}  // namespace
 
 /**
  * The discrete update reduces every end point to its voxel anyway, so feeding it one voxel
@@ -136,22 +77,17 @@ octomap::OcTreeKey unpack(std::uint64_t packed) {
 void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan& obs,
                                        const FlatPose& robot,
                                        const std::vector<PersonFootprint>& people) {
-    if (!obs.hasRangeImage)
-        throw std::invalid_argument("depth observation has no range image");
     Impl& m = *impl_;
     const float maxRange2 = float(params_.maxRange * params_.maxRange);
     const SensorFrame frame = sensorFrameInWorld(obs, robot);
     const PeopleBuckets onPeople(people);
-    const DepthRays rays(obs);
-    thread_local DepthRow row;
     m.cloud.clear();
-    m.rowAbove.assign(std::size_t(rays.cols()), kNoKey);
-    for (int v = 0; v < rays.rows(); ++v) {
-        row.compute(&obs.rangeImage(v, 0), obs.rangeUnits, rays, v, frame, m.pointIndex.scale);
+    m.rowAbove.assign(std::size_t(obs.rangeImage.cols()), kNoKey);
+    forEachDepthRow(obs, frame, [&](int, const DepthRow& row) {
         std::uint64_t previous = kNoKey;  // the left neighbour's key, if it had a return
-        for (std::size_t u = 0; u < row.key.size(); ++u) {
-            const std::uint64_t packed = row.key[u];
-            if (packed == kNoKey) {
+        for (std::size_t u = 0; u < row.returned.size(); ++u) {
+            octomap::OcTreeKey key;
+            if (!row.returned[u] || !m.keyOf(octomap::point3d(row.x[u], row.y[u], row.z[u]), key)) {
                 previous = kNoKey;  // no return, or a point outside the tree
                 continue;
             }
@@ -159,17 +95,18 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
             std::uint64_t& above = m.rowAbove[u];
             if (!people.empty() && (p - frame.origin).squaredNorm() <= maxRange2 &&
                 onPeople.contains(p)) {
-                m.personKeys.insert(unpack(packed));
+                m.personKeys.insert(key);
                 previous = kNoKey;
                 above = kNoKey;
                 continue;
             }
+            const std::uint64_t packed = pack(key);
             if (packed != previous && packed != above)
-                m.cloud.push_back(m.tree.keyToCoord(unpack(packed)));
+                m.cloud.push_back(m.tree.keyToCoord(key));
             previous = packed;
             above = packed;
         }
-    }
+    });
     if (params_.noReturnIsFree)
         addNoReturnRays(obs, frame);
     const octomap::point3d o(frame.origin.x(), frame.origin.y(), frame.origin.z());
