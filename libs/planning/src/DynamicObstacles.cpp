@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace daep::planning {
 
@@ -70,17 +71,32 @@ double DynamicObstacles::keepOutRadius(const perception::PositionPrediction& at,
            std::min(params_.maxInflation, params_.sigmaInflation * sigma);
 }
 
-double DynamicObstacles::gapTo(const perception::PersonForecast& person, const TimedSegment& move,
-                               double clearanceScale) const {
-    const double t0 = std::max(move.start, person.time);
-    const double t1 = std::min(move.end(), person.time + params_.horizon);
-    if (t1 < t0)
-        return std::numeric_limits<double>::infinity();
+std::optional<DynamicObstacles::Encounter> DynamicObstacles::encounter(
+    const perception::PersonForecast& person, const TimedSegment& move) const {
+    Encounter e;
+    e.t0 = std::max(move.start, person.time);
+    e.t1 = std::min(move.end(), person.time + params_.horizon);
+    if (e.t1 < e.t0)
+        return std::nullopt;
     const double droneSpeed =
         move.flyTime > 0.0 ? (move.to - move.from).norm() / move.flyTime : 0.0;
-    const double closing = droneSpeed + person.velocity().norm();
+    e.closing = droneSpeed + person.velocity().norm();
+    return e;
+}
+
+double DynamicObstacles::gapTo(const perception::PersonForecast& person, const TimedSegment& move,
+                               double clearanceScale) const {
+    const std::optional<Encounter> e = encounter(person, move);
+    return e ? gapDuring(person, move, *e, clearanceScale)
+             : std::numeric_limits<double>::infinity();
+}
+
+double DynamicObstacles::gapDuring(const perception::PersonForecast& person,
+                                   const TimedSegment& move, const Encounter& e,
+                                   double clearanceScale) const {
+    const double t0 = e.t0, t1 = e.t1, closing = e.closing;
     // Quick reject: even closing at full speed over the whole move cannot reach the body.
-    const Eigen::Vector2d startGap = move.positionAt(t0).head<2>() - person.at(t0).mean;
+    const Eigen::Vector2d startGap = move.positionAt(t0).head<2>() - person.meanAt(t0);
     const double reach = keepOutRadius(person, t1, clearanceScale) + closing * (t1 - t0);
     if (startGap.norm() > reach + 1e-9)
         return startGap.norm() - reach;
@@ -111,23 +127,19 @@ double DynamicObstacles::clearance(const TimedSegment& move, double clearanceSca
 
 bool DynamicObstacles::blocks(const perception::PersonForecast& person, const TimedSegment& move,
                               double clearanceScale) const {
-    // gapTo's quick reject with the largest body the person can have: far walkers are
-    // passed without their forecast's covariance. Never rejects where gapTo would not.
-    const double t0 = std::max(move.start, person.time);
-    const double t1 = std::min(move.end(), person.time + params_.horizon);
-    if (t1 < t0)
+    const std::optional<Encounter> e = encounter(person, move);
+    if (!e)
         return false;
+    // gapDuring's quick reject with the largest body the person can have: far walkers are
+    // passed without their forecast's covariance. Never rejects where gapDuring would not.
     if (std::isfinite(params_.maxInflation) && params_.maxInflation >= 0.0) {
-        const double droneSpeed =
-            move.flyTime > 0.0 ? (move.to - move.from).norm() / move.flyTime : 0.0;
-        const double closing = droneSpeed + person.velocity().norm();
         const double largestReach =
-            bodyKeepOut(clearanceScale) + params_.maxInflation + closing * (t1 - t0);
-        const Eigen::Vector2d startGap = move.positionAt(t0).head<2>() - person.meanAt(t0);
+            bodyKeepOut(clearanceScale) + params_.maxInflation + e->closing * (e->t1 - e->t0);
+        const Eigen::Vector2d startGap = move.positionAt(e->t0).head<2>() - person.meanAt(e->t0);
         if (startGap.norm() > largestReach + 1e-9)
             return false;
     }
-    return gapTo(person, move, clearanceScale) <= 0.0;
+    return gapDuring(person, move, *e, clearanceScale) <= 0.0;
 }
 
 /**

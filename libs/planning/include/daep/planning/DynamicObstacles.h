@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "daep/common/Types.h"
@@ -95,8 +96,17 @@ public:
 
 private:
     double keepOutRadius(const perception::PositionPrediction& at, double clearanceScale) const;
+    /** When a move and a person's forecast overlap in time, and how fast they can close in. */
+    struct Encounter {
+        double t0 = 0.0, t1 = 0.0;  ///< the overlap, absolute s
+        double closing = 0.0;       ///< drone speed + walker speed, m/s
+    };
+    std::optional<Encounter> encounter(const perception::PersonForecast& person,
+                                       const TimedSegment& move) const;
     double gapTo(const perception::PersonForecast& person, const TimedSegment& move,
                  double clearanceScale) const;
+    double gapDuring(const perception::PersonForecast& person, const TimedSegment& move,
+                     const Encounter& e, double clearanceScale) const;
     /** gapTo(person, move) <= 0, faster for walkers far from the move. */
     bool blocks(const perception::PersonForecast& person, const TimedSegment& move,
                 double clearanceScale) const;
