@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -95,22 +96,47 @@ TEST(GainCache, NearReturnsLiveEntriesInRadiusNearestFirst) {
     EXPECT_TRUE(cache.near({-50.0, -50.0, -3.0}, 3.0).empty());
 }
 
+/** The live points within `radius` of p by brute force: nearest first, then by id. */
+std::vector<int> nearByBruteForce(const std::vector<Eigen::Vector3d>& points,
+                                  const std::vector<bool>& alive, const Eigen::Vector3d& p,
+                                  double radius) {
+    std::vector<std::pair<double, int>> found;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (alive[i] && (points[i] - p).squaredNorm() <= radius * radius)
+            found.emplace_back((points[i] - p).squaredNorm(), static_cast<int>(i));
+    std::sort(found.begin(), found.end());
+    std::vector<int> ids;
+    for (const auto& f : found)
+        ids.push_back(f.second);
+    return ids;
+}
+
 TEST(GainCache, AgreesWithBruteForceOnRandomPoints) {
+    // From a few entries (the query scans them) to many (it looks up the grid's cells), with
+    // entries removed along the way.
     GainCache cache(0.7);
     std::mt19937_64 rng(9);
     std::uniform_real_distribution<double> u(-6.0, 6.0);
     std::vector<Eigen::Vector3d> points;
+    std::vector<bool> alive;
     for (int i = 0; i < 400; ++i) {
         points.emplace_back(u(rng), u(rng), 0.3 * u(rng));
+        alive.push_back(true);
         cache.insert(points.back(), 0.0, 1.0);
+        if (i % 3 == 2) {
+            const int gone = static_cast<int>(rng() % points.size());
+            cache.remove(gone);
+            alive[static_cast<std::size_t>(gone)] = false;
+        }
+        if (i % 10 != 0)
+            continue;
+        for (const double radius : {0.3, 1.8}) {
+            const Eigen::Vector3d p(u(rng), u(rng), 0.0);
+            EXPECT_EQ(cache.near(p, radius), nearByBruteForce(points, alive, p, radius))
+                << i << " entries, radius " << radius;
+        }
     }
-    for (int q = 0; q < 30; ++q) {
-        const Eigen::Vector3d p(u(rng), u(rng), 0.0);
-        std::size_t expected = 0;
-        for (const auto& x : points)
-            expected += (x - p).norm() <= 1.8;
-        EXPECT_EQ(cache.near(p, 1.8).size(), expected);
-    }
+    EXPECT_EQ(cache.size(), static_cast<std::size_t>(std::count(alive.begin(), alive.end(), true)));
 }
 
 }  // namespace

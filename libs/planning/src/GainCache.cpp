@@ -27,8 +27,10 @@ Eigen::Vector3i GainCache::cellOf(const Eigen::Vector3d& p) const {
 int GainCache::insert(const Eigen::Vector3d& position, double yaw, double gain) {
     const int id = static_cast<int>(entries_.size());
     entries_.push_back({position, yaw, gain, true});
-    grid_[keyOf(cellOf(position))].push_back(id);
-    ++live_;
+    cells_.push_back(cellOf(position));
+    grid_[keyOf(cells_.back())].push_back(id);
+    slot_.push_back(live_.size());
+    live_.push_back(id);
     return id;
 }
 
@@ -37,9 +39,12 @@ void GainCache::remove(int id) {
     if (!e.alive)
         return;
     e.alive = false;
-    std::vector<int>& bucket = grid_[keyOf(cellOf(e.position))];
+    std::vector<int>& bucket = grid_[keyOf(cells_[static_cast<std::size_t>(id)])];
     bucket.erase(std::find(bucket.begin(), bucket.end(), id));
-    --live_;
+    const std::size_t at = slot_[static_cast<std::size_t>(id)];
+    live_[at] = live_.back();
+    slot_[static_cast<std::size_t>(live_[at])] = at;
+    live_.pop_back();
 }
 
 void GainCache::update(int id, double yaw, double gain) {
@@ -54,18 +59,30 @@ std::vector<int> GainCache::near(const Eigen::Vector3d& p, double radius,
     const Eigen::Vector3i lo = cellOf(p - Eigen::Vector3d::Constant(radius));
     const Eigen::Vector3i hi = cellOf(p + Eigen::Vector3d::Constant(radius));
     const double r2 = radius * radius;
-    for (int x = lo.x(); x <= hi.x(); ++x)
-        for (int y = lo.y(); y <= hi.y(); ++y)
-            for (int z = lo.z(); z <= hi.z(); ++z) {
-                const auto it = grid_.find(keyOf({x, y, z}));
-                if (it == grid_.end())
-                    continue;
-                for (int id : it->second) {
-                    const double d2 = (entry(id).position - p).squaredNorm();
-                    if (d2 <= r2)
-                        found.emplace_back(d2, id);
+    const auto consider = [&](int id) {
+        const double d2 = (entry(id).position - p).squaredNorm();
+        if (d2 <= r2)
+            found.emplace_back(d2, id);
+    };
+    const Eigen::Vector3i span = hi - lo + Eigen::Vector3i::Ones();
+    const double cellsToLookUp = double(span.x()) * double(span.y()) * double(span.z());
+    if (double(live_.size()) < cellsToLookUp) {
+        for (int id : live_) {
+            const Eigen::Vector3i& c = cells_[static_cast<std::size_t>(id)];
+            if ((c.array() >= lo.array()).all() && (c.array() <= hi.array()).all())
+                consider(id);
+        }
+    } else {
+        for (int x = lo.x(); x <= hi.x(); ++x)
+            for (int y = lo.y(); y <= hi.y(); ++y)
+                for (int z = lo.z(); z <= hi.z(); ++z) {
+                    const auto it = grid_.find(keyOf({x, y, z}));
+                    if (it == grid_.end())
+                        continue;
+                    for (int id : it->second)
+                        consider(id);
                 }
-            }
+    }
     std::sort(found.begin(), found.end());
     std::vector<int> ids;
     for (std::size_t i = 0; i < found.size() && i < maxCount; ++i)
@@ -75,7 +92,7 @@ std::vector<int> GainCache::near(const Eigen::Vector3d& p, double radius,
 
 std::vector<int> GainCache::liveIds() const {
     std::vector<int> ids;
-    ids.reserve(live_);
+    ids.reserve(live_.size());
     for (std::size_t i = 0; i < entries_.size(); ++i)
         if (entries_[i].alive)
             ids.push_back(static_cast<int>(i));
@@ -84,8 +101,10 @@ std::vector<int> GainCache::liveIds() const {
 
 void GainCache::clear() {
     entries_.clear();
+    cells_.clear();
     grid_.clear();
-    live_ = 0;
+    live_.clear();
+    slot_.clear();
 }
 
 }  // namespace daep::planning

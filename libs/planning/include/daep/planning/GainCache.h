@@ -19,7 +19,9 @@ struct CachedGain {
  * AEP's gain cache: viewpoints with high gain in a uniform hash grid (cells of `cellSize`), so
  * radius queries touch only the few cells around the query. Ids are stable; removal marks an
  * entry dead and unlinks it from the grid. Query results are ordered by distance, then id, so
- * they are deterministic.
+ * they are deterministic. While the cache holds fewer entries than a query has cells to look
+ * up, the query scans the live entries instead, keeping those in the cells it would look up:
+ * the same entries, without the hash lookups.
  */
 class GainCache {
 public:
@@ -37,7 +39,7 @@ public:
     std::vector<int> liveIds() const;
 
     const CachedGain& entry(int id) const { return entries_[static_cast<std::size_t>(id)]; }
-    std::size_t size() const { return live_; }
+    std::size_t size() const { return live_.size(); }
     void clear();
 
 private:
@@ -47,8 +49,10 @@ private:
 
     double cellSize_;
     std::vector<CachedGain> entries_;
+    std::vector<Eigen::Vector3i> cells_;  ///< each entry's grid cell
     std::unordered_map<Key, std::vector<int>> grid_;
-    std::size_t live_ = 0;
+    std::vector<int> live_;          ///< live ids, in no particular order
+    std::vector<std::size_t> slot_;  ///< where each live id sits in live_
 };
 
 }  // namespace daep::planning
