@@ -4,14 +4,37 @@
 #include <cmath>
 #include <limits>
 
+#include "daep/mapping/ExplorationMap.h"
+
 namespace daep::planning {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+double BlindWatch::walkTime(double distance) const {
+    return params_.walkSpeed > 0.0 ? distance / params_.walkSpeed : kInf;
+}
 
 BlindWatch::BlindWatch(const DynamicFrequencyMap& layout, const BlindWatchParams& params)
     : params_(params),
       grid_(layout.grid()),
-      lastSeen_(grid_.size(), -std::numeric_limits<double>::infinity()) {}
+      lastSeen_(grid_.size(), -kInf),
+      unseenFrom_(grid_.size(), -kInf),
+      leftAt_(grid_.size(), kInf),
+      personSeen_(grid_.size(), -kInf) {}
 
-void BlindWatch::see(const FlatPose& camera, double hfov, double t) {
+void BlindWatch::see(const FlatPose& camera, double hfov, double t, const DynamicFrequencyMap& dfm,
+                     const std::vector<Eigen::Vector2d>& people,
+                     const mapping::ExplorationMap* map) {
+    markView(camera, hfov, t, map);
+    for (const Eigen::Vector2d& person : people)
+        markLeft(person, t);
+    spread(dfm, t);
+}
+
+void BlindWatch::markView(const FlatPose& camera, double hfov, double t,
+                          const mapping::ExplorationMap* map) {
     const Eigen::Vector2d eye = camera.position.head<2>();
     for (int iy = 0; iy < grid_.ny; ++iy)
         for (int ix = 0; ix < grid_.nx; ++ix) {
@@ -20,33 +43,106 @@ void BlindWatch::see(const FlatPose& camera, double hfov, double t) {
             if (distance > params_.range || distance < 1e-6 ||
                 std::abs(wrapAngle(std::atan2(d.y(), d.x()) - camera.yaw)) > 0.5 * hfov)
                 continue;
-            lastSeen_[static_cast<std::size_t>(iy * grid_.nx + ix)] = t;
+            if (map && map->castRay(camera.position, {d.x() / distance, d.y() / distance, 0.0},
+                                    distance) < distance - 0.5 * grid_.cellSize)
+                continue;  // behind a wall
+            const auto i = static_cast<std::size_t>(iy * grid_.nx + ix);
+            lastSeen_[i] = t;
+            unseenFrom_[i] = leftAt_[i] = kInf;
         }
+}
+
+void BlindWatch::markLeft(const Eigen::Vector2d& person, double t) {
+    const int at = grid_.index(person);
+    if (at < 0)
+        return;
+    personSeen_[static_cast<std::size_t>(at)] = t;
+    const int px = at % grid_.nx, py = at / grid_.nx;
+    for (int iy = std::max(0, py - 1); iy <= std::min(grid_.ny - 1, py + 1); ++iy)
+        for (int ix = std::max(0, px - 1); ix <= std::min(grid_.nx - 1, px + 1); ++ix) {
+            const auto i = static_cast<std::size_t>(iy * grid_.nx + ix);
+            if (lastSeen_[i] == t)
+                continue;  // in view: whoever walks in is seen there
+            const double walk =
+                ix == px && iy == py ? 0.0 : walkTime((grid_.center(ix, iy) - person).norm());
+            leftAt_[i] = std::min(leftAt_[i], std::max(lastSeen_[i], t + walk));
+        }
+}
+
+bool BlindWatch::busy(const DynamicFrequencyMap& dfm, std::size_t i) const {
+    if (dfm.maxCount() == 0)
+        return false;
+    const int ix = static_cast<int>(i) % grid_.nx, iy = static_cast<int>(i) / grid_.nx;
+    const double value =
+        static_cast<double>(dfm.count(ix, iy)) / static_cast<double>(dfm.maxCount());
+    return value >= params_.busyThreshold;
+}
+
+void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
+    const int nx = grid_.nx, ny = grid_.ny;
+    std::vector<char> walkway(grid_.size());
+    for (std::size_t i = 0; i < walkway.size(); ++i) {
+        walkway[i] = busy(dfm, i);
+        // Someone seen in a cell at its last look may still be there once the camera looks away.
+        if (lastSeen_[i] < t && personSeen_[i] > -kInf && personSeen_[i] >= lastSeen_[i])
+            leftAt_[i] = std::min(leftAt_[i], lastSeen_[i]);
+        if (walkway[i])
+            unseenFrom_[i] = std::min(unseenFrom_[i], leftAt_[i]);
+    }
+    // Off the walkways only the people just seen walk, from where they were.
+    const auto from = [&](std::size_t j) { return walkway[j] ? unseenFrom_[j] : leftAt_[j]; };
+    // Two chamfer sweeps along the walkways: from the cells before each cell in raster order,
+    // then from those after it.
+    const double side = walkTime(grid_.cellSize);
+    const double diagonal = walkTime(std::sqrt(2.0) * grid_.cellSize);
+    const auto relax = [&](int ix, int iy, const int(&steps)[4][2]) {
+        const auto i = static_cast<std::size_t>(iy * nx + ix);
+        if (lastSeen_[i] == t || !walkway[i])
+            return;
+        double earliest = kInf;
+        for (const auto& s : steps) {
+            const int jx = ix + s[0], jy = iy + s[1];
+            if (jx < 0 || jy < 0 || jx >= nx || jy >= ny)
+                continue;
+            const double walk = s[0] != 0 && s[1] != 0 ? diagonal : side;
+            earliest = std::min(earliest, from(static_cast<std::size_t>(jy * nx + jx)) + walk);
+        }
+        unseenFrom_[i] = std::min(unseenFrom_[i], std::max(lastSeen_[i], earliest));
+    };
+    constexpr int kBefore[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+    constexpr int kAfter[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
+    for (int iy = 0; iy < ny; ++iy)
+        for (int ix = 0; ix < nx; ++ix)
+            relax(ix, iy, kBefore);
+    for (int iy = ny - 1; iy >= 0; --iy)
+        for (int ix = nx - 1; ix >= 0; --ix)
+            relax(ix, iy, kAfter);
 }
 
 double BlindWatch::lastSeen(const Eigen::Vector2d& xy) const {
     const int i = grid_.index(xy);
-    return i < 0 ? -std::numeric_limits<double>::infinity()
-                 : lastSeen_[static_cast<std::size_t>(i)];
+    return i < 0 ? -kInf : lastSeen_[static_cast<std::size_t>(i)];
+}
+
+double BlindWatch::unseenFrom(const Eigen::Vector2d& xy) const {
+    const int i = grid_.index(xy);
+    return i < 0 ? -kInf : unseenFrom_[static_cast<std::size_t>(i)];
 }
 
 BlindThreat BlindWatch::worstThreat(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& p,
                                     double now, double until, double keepOut) const {
     BlindThreat worst;
-    worst.excess = -std::numeric_limits<double>::infinity();
-    const double reachMax = keepOut + params_.walkSpeed * (until - now + params_.maxAge);
+    worst.excess = -kInf;
+    const double reachMax = keepOut + params_.walkSpeed * (until - now);
     for (int iy = 0; iy < grid_.ny; ++iy)
         for (int ix = 0; ix < grid_.nx; ++ix) {
+            const auto i = static_cast<std::size_t>(iy * grid_.nx + ix);
             const Eigen::Vector2d c = grid_.center(ix, iy);
             const double distance = (c - p).norm();
-            if (distance > reachMax || dfm.value(c) < params_.busyThreshold)
+            const double from = std::max(unseenFrom_[i], now);
+            if (distance > reachMax || from >= until || !busy(dfm, i))
                 continue;
-            // Seen just now and empty: whoever comes is in another cell, counted there.
-            const double unseen = now - lastSeen_[static_cast<std::size_t>(iy * grid_.nx + ix)];
-            if (unseen < params_.freshness)
-                continue;
-            const double age = std::min(params_.maxAge, unseen) + (until - now);
-            const double excess = keepOut + params_.walkSpeed * age - distance;
+            const double excess = keepOut + params_.walkSpeed * (until - from) - distance;
             if (excess > worst.excess)
                 worst = {excess, c};
         }

@@ -60,8 +60,6 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.blindGuard = requireEnum(r, "blind_guard", autoSwitch);
     p.blind.walkSpeed = requireNonNegative(r, "blind_walk_speed");
     p.blind.busyThreshold = requireInRange(r, "blind_busy_threshold", 0.0, 1.0);
-    p.blind.freshness = requireNonNegative(r, "blind_freshness_s");
-    p.blind.maxAge = requireNonNegative(r, "blind_max_age_s");
     p.blind.stopTime = requireNonNegative(r, "blind_stop_s");
     p.blind.range = requirePositive(r, "blind_watch_range");
     p.blind.maxLooks = requireIntAtLeast(r, "blind_max_looks", 0);
@@ -108,14 +106,18 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
     }
     guardingBlind_ = isOn(params_.blindGuard, context.peopleFromCamera);
     flyingOverHeads_ = isOn(params_.flyOverHeads, context.peopleFromCamera);
+    std::vector<Eigen::Vector2d> seen;
+    for (const perception::PersonForecast& f : obstacles_.people())
+        if (context.time - f.time <= kDfmFreshness)
+            seen.push_back(f.at(context.time).mean);
     if (guardingBlind_)
-        watch_.see(context.pose, gainEvaluator().params().hfov, context.time);
+        watch_.see(context.pose, gainEvaluator().params().hfov, context.time, dfm_, seen,
+                   context.map);
     if (context.time < lastObservation_ + kDfmPeriod)
         return;
     lastObservation_ = context.time;
-    for (const perception::PersonForecast& f : obstacles_.people())
-        if (context.time - f.time <= kDfmFreshness)
-            dfm_.add(f.at(context.time).mean);
+    for (const Eigen::Vector2d& xy : seen)
+        dfm_.add(xy);
 }
 
 std::vector<TimedSegment> DaepPlanner::timedMoves(const PlanningContext& context, const Plan& plan,

@@ -6,14 +6,16 @@
 #include "daep/common/Types.h"
 #include "daep/planning/DynamicFrequencyMap.h"
 
+namespace daep::mapping {
+class ExplorationMap;
+}
+
 namespace daep::planning {
 
 /** How DAEP guards the stops it makes against people its camera has not seen. */
 struct BlindWatchParams {
     double walkSpeed = 0.35;     ///< how fast an unseen person may walk, m/s
     double busyThreshold = 0.1;  ///< frequency-map value from which a cell is a walkway
-    double freshness = 1.0;      ///< a cell seen this recently holds nobody unseen, s
-    double maxAge = 4.0;         ///< a cell unseen for longer counts as unseen this long, s
     double stopTime = 2.0;       ///< how long the drone stays at a stop (re-plan, turn), s
     double range = 10.0;         ///< how far the camera sees people, m
     int maxLooks = 2;            ///< looks in a row before the drone goes anyway
@@ -26,33 +28,52 @@ struct BlindThreat {
 };
 
 /**
- * When each cell of the frequency map's grid was last inside the camera's field of view. A
- * person walks only where people have walked before (walkways: busy cells of the frequency
- * map); one who stood in a walkway cell just after the camera last looked there can have come
- * walkSpeed * (time since) closer. A stop is threatened when that reach, plus the distance
- * bodies keep, covers it. Walls are not taken as occluders: a cell behind one counts as seen.
+ * Where a person the camera does not see may be, over the frequency map's grid. People walk
+ * only where people have walked before (walkways: busy cells of the frequency map), at most
+ * walkSpeed. A cell the camera looks at holds nobody unseen; one it does not may hold someone
+ * from the earliest time a person could have walked in: from a neighbouring cell that may hold
+ * one, from where a person was last seen, or at once if nobody has ever looked. So a walkway
+ * the camera has just swept stays clear until someone could have walked in from its unseen
+ * parts or from where the people it saw went. A stop is threatened when that walker's reach,
+ * plus the distance bodies keep, covers it before the drone leaves. People are not taken as
+ * occluders: a cell behind one counts as seen.
  */
 class BlindWatch {
 public:
     BlindWatch() = default;
     explicit BlindWatch(const DynamicFrequencyMap& layout, const BlindWatchParams& params);
 
-    /** The camera at `camera` with horizontal field of view hfov (rad) looks at time t. */
-    void see(const FlatPose& camera, double hfov, double t);
     /**
-     * The worst threat, at time `now`, to a drone staying at p until `until`, bodies kept
-     * `keepOut` m apart. Cells seen within the last `freshness` s are no threat: a person
-     * there would be tracked.
+     * The camera at `camera` with horizontal field of view hfov (rad) looks at time t and
+     * measures people at `people`; walkways are the busy cells of `dfm`. With a map, a cell
+     * whose centre a wall hides (at the camera's height) is not seen.
      */
+    void see(const FlatPose& camera, double hfov, double t, const DynamicFrequencyMap& dfm,
+             const std::vector<Eigen::Vector2d>& people = {},
+             const mapping::ExplorationMap* map = nullptr);
+    /** The worst threat, at time `now`, to a drone staying at p until `until`, bodies kept
+     * `keepOut` m apart. */
     BlindThreat worstThreat(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& p, double now,
                             double until, double keepOut) const;
     double lastSeen(const Eigen::Vector2d& xy) const;
+    /** The earliest time someone unseen may be at xy's cell (+infinity: nobody can be). */
+    double unseenFrom(const Eigen::Vector2d& xy) const;
     const BlindWatchParams& params() const { return params_; }
 
 private:
+    void markView(const FlatPose& camera, double hfov, double t,
+                  const mapping::ExplorationMap* map);
+    void markLeft(const Eigen::Vector2d& person, double t);
+    void spread(const DynamicFrequencyMap& dfm, double t);
+    bool busy(const DynamicFrequencyMap& dfm, std::size_t i) const;
+    double walkTime(double distance) const;
+
     BlindWatchParams params_;
     XyGrid grid_;  ///< the frequency map's
     std::vector<double> lastSeen_;
+    std::vector<double> unseenFrom_;  ///< on walkways: when someone unseen may be there
+    std::vector<double> leftAt_;      ///< when a person seen may have walked in
+    std::vector<double> personSeen_;  ///< when a person was last measured in each cell
 };
 
 }  // namespace daep::planning
