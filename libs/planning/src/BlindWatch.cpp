@@ -70,12 +70,8 @@ void BlindWatch::markLeft(const Eigen::Vector2d& person, double t) {
 }
 
 bool BlindWatch::busy(const DynamicFrequencyMap& dfm, std::size_t i) const {
-    if (dfm.maxCount() == 0)
-        return false;
     const int ix = static_cast<int>(i) % grid_.nx, iy = static_cast<int>(i) / grid_.nx;
-    const double value =
-        static_cast<double>(dfm.count(ix, iy)) / static_cast<double>(dfm.maxCount());
-    return value >= params_.busyThreshold;
+    return dfm.maxCount() > 0 && dfm.value(ix, iy) >= params_.busyThreshold;
 }
 
 void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {

@@ -106,6 +106,9 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
     }
     guardingBlind_ = isOn(params_.blindGuard, context.peopleFromCamera);
     flyingOverHeads_ = isOn(params_.flyOverHeads, context.peopleFromCamera);
+    const bool dfmDue = context.time >= lastObservation_ + kDfmPeriod;
+    if (!guardingBlind_ && !dfmDue)
+        return;  // nobody needs where people were measured now
     std::vector<Eigen::Vector2d> seen;
     for (const perception::PersonForecast& f : obstacles_.people())
         if (context.time - f.time <= kDfmFreshness)
@@ -113,7 +116,7 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
     if (guardingBlind_)
         watch_.see(context.pose, gainEvaluator().params().hfov, context.time, dfm_, seen,
                    context.map);
-    if (context.time < lastObservation_ + kDfmPeriod)
+    if (!dfmDue)
         return;
     lastObservation_ = context.time;
     for (const Eigen::Vector2d& xy : seen)

@@ -39,10 +39,13 @@ void DynamicFrequencyMap::add(const Eigen::Vector2d& xy) {
 
 double DynamicFrequencyMap::value(const Eigen::Vector2d& xy) const {
     const int i = grid_.index(xy);
-    if (i < 0 || maxCount_ == 0)
+    return i < 0 ? 0.0 : value(i % grid_.nx, i / grid_.nx);
+}
+
+double DynamicFrequencyMap::value(int ix, int iy) const {
+    if (maxCount_ == 0)
         return 0.0;
-    return static_cast<double>(counts_[static_cast<std::size_t>(i)]) /
-           static_cast<double>(maxCount_);
+    return static_cast<double>(count(ix, iy)) / static_cast<double>(maxCount_);
 }
 
 }  // namespace daep::planning
