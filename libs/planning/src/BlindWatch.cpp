@@ -70,8 +70,7 @@ void BlindWatch::markLeft(const Eigen::Vector2d& person, double t) {
 }
 
 bool BlindWatch::busy(const DynamicFrequencyMap& dfm, std::size_t i) const {
-    const int ix = static_cast<int>(i) % grid_.nx, iy = static_cast<int>(i) / grid_.nx;
-    return dfm.maxCount() > 0 && dfm.value(ix, iy) >= params_.busyThreshold;
+    return dfm.maxCount() > 0 && dfm.value(i) >= params_.busyThreshold;
 }
 
 void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {

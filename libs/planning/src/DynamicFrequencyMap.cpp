@@ -39,13 +39,13 @@ void DynamicFrequencyMap::add(const Eigen::Vector2d& xy) {
 
 double DynamicFrequencyMap::value(const Eigen::Vector2d& xy) const {
     const int i = grid_.index(xy);
-    return i < 0 ? 0.0 : value(i % grid_.nx, i / grid_.nx);
+    return i < 0 ? 0.0 : value(static_cast<std::size_t>(i));
 }
 
-double DynamicFrequencyMap::value(int ix, int iy) const {
+double DynamicFrequencyMap::value(std::size_t cell) const {
     if (maxCount_ == 0)
         return 0.0;
-    return static_cast<double>(count(ix, iy)) / static_cast<double>(maxCount_);
+    return static_cast<double>(counts_[cell]) / static_cast<double>(maxCount_);
 }
 
 }  // namespace daep::planning

@@ -38,8 +38,8 @@ public:
     void add(const Eigen::Vector2d& xy);
 
     double value(const Eigen::Vector2d& xy) const;
-    /** The same for the cell (ix, iy) of grid(). */
-    double value(int ix, int iy) const;
+    /** The same for a cell of grid(), numbered as XyGrid::index numbers them. */
+    double value(std::size_t cell) const;
 
     const XyGrid& grid() const { return grid_; }
     double cellSize() const { return grid_.cellSize; }
