@@ -115,13 +115,16 @@ void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
 }
 
 double BlindWatch::lastSeen(const Eigen::Vector2d& xy) const {
-    const int i = grid_.index(xy);
-    return i < 0 ? -kInf : lastSeen_[static_cast<std::size_t>(i)];
+    return atCell(lastSeen_, xy);
 }
 
 double BlindWatch::unseenFrom(const Eigen::Vector2d& xy) const {
+    return atCell(unseenFrom_, xy);
+}
+
+double BlindWatch::atCell(const std::vector<double>& times, const Eigen::Vector2d& xy) const {
     const int i = grid_.index(xy);
-    return i < 0 ? -kInf : unseenFrom_[static_cast<std::size_t>(i)];
+    return i < 0 ? -kInf : times[static_cast<std::size_t>(i)];
 }
 
 BlindThreat BlindWatch::worstThreat(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& p,

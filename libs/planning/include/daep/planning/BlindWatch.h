@@ -67,6 +67,8 @@ private:
     void spread(const DynamicFrequencyMap& dfm, double t);
     bool busy(const DynamicFrequencyMap& dfm, std::size_t i) const;
     double walkTime(double distance) const;
+    /** A per-cell time at xy's cell (-infinity outside the grid). */
+    double atCell(const std::vector<double>& times, const Eigen::Vector2d& xy) const;
 
     BlindWatchParams params_;
     XyGrid grid_;  ///< the frequency map's
