@@ -136,6 +136,27 @@ TEST_F(FreeBlockMap, GrazedWallFaceInFrontOfAnUnknownInsideBlocksTheCapsule) {
     EXPECT_TRUE(map_.isSegmentFree(from + left, to + left, 0.3));
 }
 
+TEST_F(FreeBlockMap, SweptBoxMeetsOnlyNewOccupiedCells) {
+    // Cell [2.0, 2.2] x [1.4, 1.6] x [0.4, 0.6] beside the way; the box is 0.6 x 0.6 x 0.1.
+    const Eigen::Vector3d half(0.3, 0.3, 0.05);
+    const Eigen::Vector3d a(0.5, 1.0, 0.5), b(3.5, 1.0, 0.5);
+    EXPECT_TRUE(map_.isSweptBoxClearOfNew(a, b, half));
+    test::occupy(map_, cellCentre({10, 7, 2}, kRes));
+    EXPECT_TRUE(map_.isSweptBoxClearOfNew(a, b, {0.39, 0.39, 0.05}));
+    EXPECT_FALSE(map_.isSweptBoxClearOfNew(a, b, {0.41, 0.41, 0.05}));
+    // Above it by 0.15 m: the box's half height decides, not its half width.
+    const Eigen::Vector3d up(0, 0.5, 0.25);
+    EXPECT_TRUE(map_.isSweptBoxClearOfNew(a + up, b + up, {0.3, 0.3, 0.14}));
+    EXPECT_FALSE(map_.isSweptBoxClearOfNew(a + up, b + up, {0.3, 0.3, 0.16}));
+    // A cell the box already meets where it starts does not count, wherever the move goes.
+    const Eigen::Vector3d beside(2.1, 1.2, 0.5);
+    EXPECT_TRUE(map_.isSweptBoxClearOfNew(beside, {2.1, 1.3, 0.5}, half));
+    EXPECT_TRUE(map_.isSweptBoxClearOfNew(beside, b, half));
+    // Unknown space is no obstacle; outside the map's bounds is.
+    EXPECT_TRUE(map_.isSweptBoxClearOfNew(a, {0.5, -0.5, 0.5}, half));
+    EXPECT_FALSE(map_.isSweptBoxClearOfNew(a, {0.5, 1.0, 1e6}, half));
+}
+
 TEST_F(FreeBlockMap, SegmentAgainstHandPlacedObstacle) {
     const Eigen::Vector3d a(0.5, 1.0, 0.5), b(3.5, 1.0, 0.5);
     EXPECT_TRUE(map_.isSegmentFree(a, b, 0.3));

@@ -555,7 +555,7 @@ TEST_F(TallRoom, WithPeopleFromTheCameraStopsAreRaisedOverTheirHeads) {
         std::size_t k = 0;  // the planned stop met next
         for (const Waypoint& w : plan.waypoints) {
             const FlatPose& p = w.pose;
-            EXPECT_TRUE(segmentFlyable(*map, at.position, p.position, 0.3, false)) << seed;
+            EXPECT_TRUE(segmentFlyable(*map, at.position, p.position, 0.3, 0.05, false)) << seed;
             t += ctx.motion.travelTime(at, p);  // timed as flown, climbs included
             EXPECT_NEAR(w.arrivalTime, t, 1e-9) << seed;
             at = p;

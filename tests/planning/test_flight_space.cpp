@@ -30,7 +30,7 @@ struct HemmedIn : ::testing::Test {
     }
     const Aabb room = test::box(0, 0, 0, 8, 6, 2);
     std::unique_ptr<mapping::ExplorationMap> map;
-    const double radius = 0.3;
+    const double radius = 0.3, halfHeight = 0.05;
     const Eigen::Vector3d drone{4.05, 3.0, 0.95};  // 0.15 m from the imprint and the ledge
 };
 
@@ -51,13 +51,57 @@ TEST_F(HemmedIn, ItLeavesByAMoveThatComesNoCloserThanItIs) {
     // its first radius the move still runs 0.15 m above the ledge, so skipping the first
     // radius alone would not let the drone go.
     const Eigen::Vector3d west(2.5, 3.0, 0.95);
-    EXPECT_TRUE(segmentFlyable(*map, drone, west, radius, true));
+    EXPECT_TRUE(segmentFlyable(*map, drone, west, radius, halfHeight, true));
     EXPECT_FALSE(map->isSegmentFreeOrUnknown(drone + Eigen::Vector3d(-radius, 0, 0), west, radius));
     // Not when it is not known to be blocked, and not down towards the ledge.
-    EXPECT_FALSE(segmentFlyable(*map, drone, west, radius, false));
-    EXPECT_FALSE(segmentFlyable(*map, drone, {2.5, 3.0, 0.75}, radius, true));
+    EXPECT_FALSE(segmentFlyable(*map, drone, west, radius, halfHeight, false));
+    EXPECT_FALSE(segmentFlyable(*map, drone, {2.5, 3.0, 0.75}, radius, halfHeight, true));
     // Nor to an end without its full clearance.
-    EXPECT_FALSE(segmentFlyable(*map, drone, {3.3, 3.0, 0.95}, radius, true));
+    EXPECT_FALSE(segmentFlyable(*map, drone, {3.3, 3.0, 0.95}, radius, halfHeight, true));
+}
+
+/** A drone 0.1 m west of an imprint, in a room mapped all around it, with `more` in it too. */
+std::unique_ptr<mapping::ExplorationMap> besideAnImprint(const Eigen::Vector3d& drone,
+                                                         const std::vector<Eigen::Vector3f>& more) {
+    auto map = test::makeMap(test::box(0, 0, 0, 8, 6, 2), 10.0);
+    map->insertPointCloud(drone,
+                          test::roomScan(test::box(-0.1, -0.1, -0.1, 8.1, 6.1, 2.1), drone, 0.5));
+    std::vector<Eigen::Vector3f> surfaces = more;
+    addBlock(surfaces, {4.2, 2.6, 0.6}, {4.6, 3.4, 1.4});
+    map->insertPointCloud({3.0, 2.0, 1.0}, surfaces);
+    return map;
+}
+
+TEST(HemmedInBesideAnImprint, ALegPastTheEndOfAWallKeepsTheRadiusFromIt) {
+    // A post stands 0.2 m beside the way west. The clearance the drone has where it is lets it
+    // leave the imprint, not pass the post that close (a drone flew so into the end of a wall).
+    const Eigen::Vector3d drone(4.1, 3.0, 1.0);
+    std::vector<Eigen::Vector3f> post;
+    addBlock(post, {2.0, 3.2, 0.0}, {2.4, 3.6, 2.0});
+    const auto map = besideAnImprint(drone, post);
+    const double radius = 0.3, halfHeight = 0.05;
+    const double clear = clearanceFromOccupied(*map, drone, radius);
+    ASSERT_NEAR(clear, 0.1, radius / 32.0);
+    const Eigen::Vector3d pastThePost(1.0, 3.0, 1.0), wideOfIt(1.0, 2.5, 1.0);
+    ASSERT_TRUE(map->isSegmentFreeOrUnknown(drone, pastThePost, clear));
+    EXPECT_FALSE(segmentFlyable(*map, drone, pastThePost, radius, halfHeight, true));
+    EXPECT_TRUE(segmentFlyable(*map, drone, wideOfIt, radius, halfHeight, true));
+}
+
+TEST(HemmedInBesideAnImprint, ALegOverAFloorOfHeadsKeepsItsBodyClearOfThem) {
+    // A metre of mapped heads west of the drone, their tops 0.15 m below its way out, more
+    // than the 0.1 m it has where it is: a drone 0.1 m tall passes over them (the trap of
+    // hovering over mapped heads), one 0.4 m tall does not.
+    std::vector<Eigen::Vector3f> heads;
+    addBlock(heads, {2.8, 2.6, 0.4}, {3.8, 3.4, 0.8});
+    const Eigen::Vector3d drone(4.1, 3.0, 0.95), west(1.5, 3.0, 0.95);
+    const auto map = besideAnImprint(drone, heads);
+    const double radius = 0.3;
+    ASSERT_NEAR(clearanceFromOccupied(*map, drone, radius), 0.1, radius / 32.0);
+    ASSERT_FALSE(map->isSegmentFreeOrUnknown(drone + (west - drone).normalized() * 2 * radius, west,
+                                             radius));
+    EXPECT_TRUE(segmentFlyable(*map, drone, west, radius, 0.05, true));
+    EXPECT_FALSE(segmentFlyable(*map, drone, west, radius, 0.2, true));
 }
 
 }  // namespace

@@ -25,7 +25,7 @@ TEST_F(OverHeads, StopsAreRaisedWhereTheirLegsStayInKnownFreeSpace) {
     // The first two stops can go up; the third lies in the unseen east half, so it stays, and
     // so does the second, whose leg to the third would cross unknown space from up there.
     std::vector<Waypoint> stops{stop(2.5, 2.0, 1.0), stop(3.0, 2.0, 1.2), stop(6.5, 2.0, 1.0)};
-    ASSERT_FALSE(segmentFlyable(*map, {3.0, 2.0, 2.1}, {6.5, 2.0, 1.0}, 0.3, false));
+    ASSERT_FALSE(segmentFlyable(*map, {3.0, 2.0, 2.1}, {6.5, 2.0, 1.0}, 0.3, 0.05, false));
     ASSERT_TRUE(raiseStops(space, root, stops));
     EXPECT_TRUE(stops[0].pose.position.isApprox(Eigen::Vector3d(2.5, 2.0, 2.1)));
     EXPECT_DOUBLE_EQ(stops[1].pose.position.z(), 1.2);
@@ -64,12 +64,12 @@ TEST_F(OverHeads, WhereTheLegsEndCannotBeFlownHighTheDropComesEarlier) {
             shelf.emplace_back(float(x), float(y), 2.0f);
     map->insertPointCloud({2.0, 2.0, 1.0}, shelf);
     const Eigen::Vector3d high(2.0, 2.0, 2.1);
-    ASSERT_FALSE(segmentFlyable(*map, high, {3.6, 2.0, 2.1}, 0.3, false));
-    ASSERT_FALSE(segmentFlyable(*map, high, {3.2, 2.0, 2.1}, 0.3, false));
+    ASSERT_FALSE(segmentFlyable(*map, high, {3.6, 2.0, 2.1}, 0.3, 0.05, false));
+    ASSERT_FALSE(segmentFlyable(*map, high, {3.2, 2.0, 2.1}, 0.3, 0.05, false));
     const std::vector<Waypoint> way = stayHigh(space, high, {stop(3.6, 2.0, 1.0)});
     ASSERT_EQ(way.size(), 2u);
     EXPECT_TRUE(way[0].pose.position.isApprox(Eigen::Vector3d(2.8, 2.0, 2.1)));
-    EXPECT_TRUE(segmentFlyable(*map, way[0].pose.position, way[1].pose.position, 0.3, false));
+    EXPECT_TRUE(segmentFlyable(*map, way[0].pose.position, way[1].pose.position, 0.3, 0.05, false));
 }
 
 TEST_F(OverHeads, AWayOverTheHeadsEndsBeforeItGoesDownAmongThePeopleAfterALongFlight) {

@@ -38,7 +38,7 @@ public:
         }
         const Aabb box = shrink(context.explorationBox, kRobotRadius);
         const Eigen::Vector3d& from = context.pose.position;
-        pathSpace_.bind(*context.map, kRobotRadius, false);
+        pathSpace_.bind(*context.map, kRobotRadius, 0.05, false);
         double bestValue = 0.0;
         for (int k = 0; k < kSamples; ++k) {
             const Eigen::Vector3d to = sampleInBox(box, rng_);

@@ -57,7 +57,8 @@ TEST_F(WayOutRoom, ItStepsOutOfTheWayOfAWalkerComingAtTheDrone) {
     EXPECT_GT(std::abs(way->path.back().y() - 3.0), bodies.bodyKeepOut());
     Eigen::Vector3d at = drone.position;
     for (const Eigen::Vector3d& p : way->path) {
-        EXPECT_TRUE(segmentFlyable(*map, at, p, WayOutParams{}.robotRadius, false))
+        EXPECT_TRUE(segmentFlyable(*map, at, p, WayOutParams{}.robotRadius,
+                                   WayOutParams{}.bodyHalfHeight, false))
             << at.transpose() << " -> " << p.transpose();
         EXPECT_NEAR((p - at).norm(), 0.4, 0.4 * std::sqrt(3.0) - 0.4 + 1e-9);  // lattice steps
         at = p;

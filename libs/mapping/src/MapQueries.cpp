@@ -89,6 +89,24 @@ int firstClearBit(const std::uint64_t* bits, int from, int to) {
     return to + 1;
 }
 
+/** Whether f(key) holds for every cell from lo to hi (keys, inclusive); stops at the first no. */
+template <typename F>
+bool everyCell(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi, F&& f) {
+    octomap::OcTreeKey k;
+    for (int z = lo[2]; z <= hi[2]; ++z) {
+        k[2] = octomap::key_type(z);
+        for (int y = lo[1]; y <= hi[1]; ++y) {
+            k[1] = octomap::key_type(y);
+            for (int x = lo[0]; x <= hi[0]; ++x) {
+                k[0] = octomap::key_type(x);
+                if (!f(k))
+                    return false;
+            }
+        }
+    }
+    return true;
+}
+
 }  // namespace
 
 bool ExplorationMap::isBoxFree(const Eigen::Vector3d& center,
@@ -99,20 +117,8 @@ bool ExplorationMap::isBoxFree(const Eigen::Vector3d& center,
         !m.keyOf(center + halfExtents.cwiseAbs(), hi)) {
         return false;
     }
-    octomap::OcTreeKey k;
-    for (int z = lo[2]; z <= hi[2]; ++z) {
-        k[2] = octomap::key_type(z);
-        for (int y = lo[1]; y <= hi[1]; ++y) {
-            k[1] = octomap::key_type(y);
-            for (int x = lo[0]; x <= hi[0]; ++x) {
-                k[0] = octomap::key_type(x);
-                if (m.stateAt(k) != CellState::Free) {
-                    return false;
-                }
-            }
-        }
-    }
-    return true;
+    return everyCell(lo, hi,
+                     [&m](const octomap::OcTreeKey& k) { return m.stateAt(k) == CellState::Free; });
 }
 
 const std::uint64_t* ExplorationMap::Impl::passRow(int y, int z) const {
@@ -304,6 +310,26 @@ bool ExplorationMap::isSegmentFree(const Eigen::Vector3d& a, const Eigen::Vector
 bool ExplorationMap::isSegmentFreeOrUnknown(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                             double radius) const {
     return impl_->capsuleCellsAllowed<Impl::Passable::NotOccupied>(a, b, radius);
+}
+
+bool ExplorationMap::isSweptBoxClearOfNew(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& halfExtents) const {
+    const Impl& m = *impl_;
+    const Eigen::Vector3d h = halfExtents.cwiseAbs();
+    octomap::OcTreeKey lo, hi;
+    if (!m.keyOf(a.cwiseMin(b) - h, lo) || !m.keyOf(a.cwiseMax(b) + h, hi))
+        return false;
+    const double res = m.tree.getResolution();
+    const Eigen::Vector3d d = b - a, none = Eigen::Vector3d::Zero();
+    return everyCell(lo, hi, [&](const octomap::OcTreeKey& k) {
+        if (m.stateAt(k) != CellState::Occupied)
+            return true;
+        // The box meets a cell where the segment meets the cell grown by the box.
+        const Eigen::Vector3d cellLo(m.cellLow(k[0]), m.cellLow(k[1]), m.cellLow(k[2]));
+        const Eigen::Vector3d grownLo = cellLo - h, grownHi = cellLo.array() + res + h.array();
+        return segmentBoxDistance2(a, d, grownLo, grownHi) > 0.0 ||
+               segmentBoxDistance2(a, none, grownLo, grownHi) <= 0.0;
+    });
 }
 
 double ExplorationMap::castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& unitDir,

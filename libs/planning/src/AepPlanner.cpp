@@ -52,6 +52,7 @@ AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
     p.mapFrontiers = r.requireBool("map_frontiers");
     const ConfigReader planning(config, "planning");
     p.robotRadius = requireNonNegative(planning, "robot_radius");
+    p.bodyHalfHeight = 0.5 * requireNonNegative(ConfigReader(config, "drone"), "box_z");
     p.crossUnknown =
         requireEnum<bool>(planning, "path_space", {{"known_free", false}, {"not_occupied", true}});
     return p;
@@ -155,7 +156,8 @@ Plan AepPlanner::plan(const PlanningContext& context) {
         throw std::invalid_argument("AepPlanner::plan: no map");
     stats_ = {};
     flight_.motion = context.motion;
-    pathSpace_.bind(*context.map, params_.robotRadius, params_.crossUnknown);
+    pathSpace_.bind(*context.map, params_.robotRadius, params_.bodyHalfHeight,
+                    params_.crossUnknown);
     cachedView_.bind(*context.map);
     samplingBox_ = shrink(context.explorationBox, params_.robotRadius);
     if (params_.crossUnknown)

@@ -296,13 +296,14 @@ template <typename Visit>
 void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
                                     Visit&& visit) const {
     const mapping::ExplorationMap& map = *context.map;
-    const double r = params().robotRadius;
+    const double r = params().robotRadius, h = params().bodyHalfHeight;
     const Aabb box = shrink(context.explorationBox, r);
     const bool leavingBlocked = !map.isSegmentFree(from, from, r);
     if (const std::optional<double> high = overHeadsHeight(); high && *high > from.z()) {
         // Straight up, over the heads: there nobody, seen or not, can reach the drone.
         const Eigen::Vector3d up(from.x(), from.y(), *high);
-        if (segmentFlyable(map, from, up, r, leavingBlocked) && !visit(up, context.pose.yaw, 0.0))
+        if (segmentFlyable(map, from, up, r, h, leavingBlocked) &&
+            !visit(up, context.pose.yaw, 0.0))
             return;
     }
     for (const double distance : {0.4, 0.8, 1.2, 1.6}) {
@@ -311,7 +312,7 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
                 const double a = 2.0 * M_PI * k / 16.0;
                 const Eigen::Vector3d to =
                     from + Eigen::Vector3d(distance * std::cos(a), distance * std::sin(a), dz);
-                if (!box.contains(to) || !segmentFlyable(map, from, to, r, leavingBlocked))
+                if (!box.contains(to) || !segmentFlyable(map, from, to, r, h, leavingBlocked))
                     continue;
                 if (!visit(to, a, distance))
                     return;
@@ -412,6 +413,7 @@ std::optional<Plan> DaepPlanner::wayOut(const PlanningContext& context,
                                         const Eigen::Vector3d& straight) const {
     WayOutParams search;
     search.robotRadius = params().robotRadius;
+    search.bodyHalfHeight = params().bodyHalfHeight;
     const double hoverUntil = context.time + params_.evasionHorizon;
     const std::optional<WayOut> way =
         findWayOut(*context.map, context.explorationBox, obstacles_, context.pose, context.time,
@@ -471,6 +473,7 @@ Plan DaepPlanner::overHeads(const PlanningContext& context, Plan plan) const {
     OverHeadsSpace space;
     space.map = context.map;
     space.radius = params().robotRadius;
+    space.halfHeight = params().bodyHalfHeight;
     space.height = *height;
     const Eigen::Vector3d& start = context.pose.position;
     space.leavingBlocked = !context.map->isSegmentFree(start, start, space.radius);

@@ -53,7 +53,8 @@ double clearanceFromOccupied(const mapping::ExplorationMap& map, const Eigen::Ve
 }
 
 bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
-                    const Eigen::Vector3d& b, double radius, bool leavingBlockedRoot) {
+                    const Eigen::Vector3d& b, double radius, double halfHeight,
+                    bool leavingBlockedRoot) {
     if (!leavingBlockedRoot)
         return map.isSegmentFree(a, b, radius);
     if (!map.isSegmentFree(b, b, radius))
@@ -64,9 +65,12 @@ bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a
     if (map.isSegmentFreeOrUnknown(start, b, radius))
         return true;
     // Hemmed in closer than the radius (by a surface or a person's imprint seen after the drone
-    // stopped): any move that never comes closer to it than the drone already is.
+    // stopped): any move that never comes closer to it than the drone already is. That
+    // clearance holds for what is near the drone only: a leg out along the end of a wall at
+    // it would hit the wall, while one over a blob of mapped heads must stay possible.
     const double clear = clearanceFromOccupied(map, a, radius);
-    return clear > 0.0 && map.isSegmentFreeOrUnknown(a, b, clear);
+    return clear > 0.0 && map.isSegmentFreeOrUnknown(a, b, clear) &&
+           map.isSweptBoxClearOfNew(a, b, Eigen::Vector3d(radius, radius, halfHeight));
 }
 
 }  // namespace daep::planning

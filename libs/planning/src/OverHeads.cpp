@@ -21,7 +21,8 @@ bool isHigh(const OverHeadsSpace& space, const Eigen::Vector3d& p) {
 
 bool flyable(const OverHeadsSpace& space, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
              bool fromStart) {
-    return segmentFlyable(*space.map, a, b, space.radius, fromStart && space.leavingBlocked);
+    return segmentFlyable(*space.map, a, b, space.radius, space.halfHeight,
+                          fromStart && space.leavingBlocked);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@ RhNbvpParams RhNbvpParams::fromConfig(const mrpt::config::CConfigFileBase& confi
     p.zeroGain = requireNonNegative(r, "zero_gain");
     p.maxSamples = requireIntAtLeast(r, "max_samples", 1);
     p.robotRadius = requireNonNegative(ConfigReader(config, "planning"), "robot_radius");
+    p.bodyHalfHeight = 0.5 * requireNonNegative(ConfigReader(config, "drone"), "box_z");
     return p;
 }
 
@@ -76,7 +77,7 @@ Plan RhNbvpPlanner::plan(const PlanningContext& context) {
     if (context.map == nullptr)
         throw std::invalid_argument("RhNbvpPlanner::plan: no map");
     tree_.reset(context.pose);
-    pathSpace_.bind(*context.map, params_.robotRadius, false);
+    pathSpace_.bind(*context.map, params_.robotRadius, params_.bodyHalfHeight, false);
     best_ = -1;
     samples_ = 0;
     samplingBox_ = shrink(context.explorationBox, params_.robotRadius);

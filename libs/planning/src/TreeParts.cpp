@@ -12,9 +12,10 @@
 namespace daep::planning {
 
 void PathSpaceValidator::bind(const mapping::ExplorationMap& map, double robotRadius,
-                              bool crossUnknown) {
+                              double bodyHalfHeight, bool crossUnknown) {
     map_ = &map;
     robotRadius_ = robotRadius;
+    bodyHalfHeight_ = bodyHalfHeight;
     crossUnknown_ = crossUnknown;
 }
 
@@ -22,7 +23,7 @@ bool PathSpaceValidator::staticValid(const Eigen::Vector3d& a, const Eigen::Vect
                                      bool leavingBlocked) const {
     if (crossUnknown_)
         return map_->isSegmentFreeOrUnknown(a, b, robotRadius_);
-    return segmentFlyable(*map_, a, b, robotRadius_, leavingBlocked);
+    return segmentFlyable(*map_, a, b, robotRadius_, bodyHalfHeight_, leavingBlocked);
 }
 
 double AepScore::score(double parentScore, double gain, double edge, const Eigen::Vector3d&) const {

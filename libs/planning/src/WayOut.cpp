@@ -179,7 +179,8 @@ std::optional<WayOut> findWayOut(const mapping::ExplorationMap& map, const Aabb&
             const double length = at.length + (pb - pa).norm();
             if (!at.exposure.betterThan(next.exposure, length, next.length))
                 return;  // even a clear move would not improve on what b has
-            if (!segmentFlyable(map, pa, pb, params.robotRadius, a == root && leavingBlocked))
+            if (!segmentFlyable(map, pa, pb, params.robotRadius, params.bodyHalfHeight,
+                                a == root && leavingBlocked))
                 return;
             Exposure e = at.exposure;
             e.add(exposureOf(bodies, pa, pb, time + at.length / motion.speed,

@@ -125,6 +125,13 @@ public:
                                 double radius) const;
 
     /**
+     * No occupied cell enters the axis-aligned box (half extents) swept from a to b, but for
+     * those the box already meets at a. Unknown space is allowed, as in isSegmentFreeOrUnknown.
+     */
+    bool isSweptBoxClearOfNew(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                              const Eigen::Vector3d& halfExtents) const;
+
+    /**
      * Walks from origin along unitDir; returns the distance to the first occupied cell, or
      * maxRange if none.
      */

@@ -44,6 +44,7 @@ struct AepParams {
      */
     bool mapFrontiers = false;
     double robotRadius = 0.3;
+    double bodyHalfHeight = 0.05;  ///< half the drone's height ([drone] box_z)
     /**
      * [planning] path_space = not_occupied: nodes and moves may lie in unknown space (only
      * occupied cells block, as the reference planners' line check), up to the box's top less

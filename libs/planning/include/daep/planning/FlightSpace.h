@@ -22,10 +22,13 @@ Eigen::Vector3d steer(const Eigen::Vector3d& from, const Eigen::Vector3d& to, do
  * `leavingBlockedRoot` (the drone is at a, but its own ball is not known free: cells around it
  * unseen, or an obstacle nearer than the radius) b must be known free, and either the move past
  * its first radius keeps the radius from occupied cells, or the whole move keeps at least the
- * clearance the drone has at a: the drone is physically at a and must be able to leave.
+ * clearance the drone has at a: the drone is physically at a and must be able to leave. Then
+ * what hems it in may stay that near, but nothing else may come within the radius sideways or
+ * `halfHeight` (its body's) above or below.
  */
 bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
-                    const Eigen::Vector3d& b, double radius, bool leavingBlockedRoot);
+                    const Eigen::Vector3d& b, double radius, double halfHeight,
+                    bool leavingBlockedRoot);
 
 /**
  * The largest radius up to `radius` (to about radius / 64) whose ball around p touches no

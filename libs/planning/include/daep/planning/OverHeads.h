@@ -15,6 +15,7 @@ namespace daep::planning {
 struct OverHeadsSpace {
     const mapping::ExplorationMap* map = nullptr;
     double radius = 0.3;          ///< the drone's, as in segmentFlyable
+    double halfHeight = 0.05;     ///< its body's, as in segmentFlyable
     double height = 0.0;          ///< a drone centre this high clears every body
     bool leavingBlocked = false;  ///< the drone's own ball is not known free (segmentFlyable)
 };

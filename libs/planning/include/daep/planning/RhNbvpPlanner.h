@@ -20,6 +20,7 @@ struct RhNbvpParams {
     double zeroGain = 2.0;
     int maxSamples = 10000;
     double robotRadius = 0.3;
+    double bodyHalfHeight = 0.05;  ///< half the drone's height ([drone] box_z)
 
     /** Reads and validates the keys; throws InputError naming the bad key. */
     static RhNbvpParams fromConfig(const mrpt::config::CConfigFileBase& config);

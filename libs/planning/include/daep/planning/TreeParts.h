@@ -75,7 +75,8 @@ public:
  */
 class PathSpaceValidator final : public MoveValidator {
 public:
-    void bind(const mapping::ExplorationMap& map, double robotRadius, bool crossUnknown);
+    void bind(const mapping::ExplorationMap& map, double robotRadius, double bodyHalfHeight,
+              bool crossUnknown);
     bool staticValid(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                      bool leavingBlocked) const override;
     bool timedValid(const FlatPose&, double, const FlatPose&) const override { return true; }
@@ -84,6 +85,7 @@ public:
 private:
     const mapping::ExplorationMap* map_ = nullptr;
     double robotRadius_ = 0.0;
+    double bodyHalfHeight_ = 0.0;
     bool crossUnknown_ = false;
 };
 

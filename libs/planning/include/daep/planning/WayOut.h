@@ -20,6 +20,7 @@ struct WayOutParams {
     double spacing = 0.4;  ///< lattice step, m (also the vertical step)
     double radius = 3.2;   ///< horizontal reach from the drone, m
     double robotRadius = 0.3;
+    double bodyHalfHeight = 0.05;  ///< as in segmentFlyable
 };
 
 /** A way out: the lattice points flown through (the start excluded) and how exposed it is. */
