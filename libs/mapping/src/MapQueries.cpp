@@ -320,15 +320,16 @@ bool ExplorationMap::isSweptBoxClearOfNew(const Eigen::Vector3d& a, const Eigen:
     if (!m.keyOf(a.cwiseMin(b) - h, lo) || !m.keyOf(a.cwiseMax(b) + h, hi))
         return false;
     const double res = m.tree.getResolution();
-    const Eigen::Vector3d d = b - a, none = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d d = b - a;
     return everyCell(lo, hi, [&](const octomap::OcTreeKey& k) {
         if (m.stateAt(k) != CellState::Occupied)
             return true;
         // The box meets a cell where the segment meets the cell grown by the box.
         const Eigen::Vector3d cellLo(m.cellLow(k[0]), m.cellLow(k[1]), m.cellLow(k[2]));
         const Eigen::Vector3d grownLo = cellLo - h, grownHi = cellLo.array() + res + h.array();
-        return segmentBoxDistance2(a, d, grownLo, grownHi) > 0.0 ||
-               segmentBoxDistance2(a, none, grownLo, grownHi) <= 0.0;
+        const bool metAtStart =
+            (a.array() >= grownLo.array()).all() && (a.array() <= grownHi.array()).all();
+        return metAtStart || segmentBoxDistance2(a, d, grownLo, grownHi) > 0.0;
     });
 }
 

@@ -52,7 +52,7 @@ AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
     p.mapFrontiers = r.requireBool("map_frontiers");
     const ConfigReader planning(config, "planning");
     p.robotRadius = requireNonNegative(planning, "robot_radius");
-    p.bodyHalfHeight = 0.5 * requireNonNegative(ConfigReader(config, "drone"), "box_z");
+    p.bodyHalfHeight = 0.5 * requirePositiveXyz(ConfigReader(config, "drone"), "box").z();
     p.crossUnknown =
         requireEnum<bool>(planning, "path_space", {{"known_free", false}, {"not_occupied", true}});
     return p;

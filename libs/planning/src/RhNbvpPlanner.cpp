@@ -21,7 +21,7 @@ RhNbvpParams RhNbvpParams::fromConfig(const mrpt::config::CConfigFileBase& confi
     p.zeroGain = requireNonNegative(r, "zero_gain");
     p.maxSamples = requireIntAtLeast(r, "max_samples", 1);
     p.robotRadius = requireNonNegative(ConfigReader(config, "planning"), "robot_radius");
-    p.bodyHalfHeight = 0.5 * requireNonNegative(ConfigReader(config, "drone"), "box_z");
+    p.bodyHalfHeight = 0.5 * requirePositiveXyz(ConfigReader(config, "drone"), "box").z();
     return p;
 }
 
