@@ -497,6 +497,46 @@ TEST_F(DaepRoom, BeforeStoppingNearAWalkwayItHasNotWatchedItTurnsToLookAtIt) {
     EXPECT_GT((go.waypoints[0].pose.position - root).norm(), 0.1);
 }
 
+TEST_F(DaepRoom, ALookBeforeAStopTurnsToSeeEveryWalkwayThatThreatensIt) {
+    // Two walkers stood behind the drone, 90 degrees apart as it sees them, then were lost.
+    // Turned at either walkway the camera (103 degrees wide) misses the other; turned between
+    // them it sees both, and the stop is clear after one look.
+    std::unique_ptr<DaepPlanner> owned = newPlanner(3);
+    DaepPlanner& planner = *owned;
+    const Eigen::Vector2d west(0.5, 2.5), south(1.5, 0.5);
+    PlanningContext ctx = contextFor(*map, root);  // facing +x: both are behind
+    ctx.peopleFromCamera = true;
+    for (int k = 0; k < 10; ++k) {
+        ctx.time = 2.0 + 0.25 * k;
+        const std::vector<PersonForecast> people{walker(0, west, {0, 0}, ctx.time),
+                                                 walker(1, south, {0, 0}, ctx.time)};
+        ctx.people = &people;
+        planner.keepFlying(ctx, Plan{}, 0);
+    }
+    const std::vector<PersonForecast> nobody;
+    ctx.people = &nobody;
+    ctx.time = 12.0;
+    const Plan look = planner.plan(ctx);
+    ASSERT_EQ(look.waypoints.size(), 1u);
+    ASSERT_EQ(look.reason.rfind("look:", 0), 0u) << look.reason;
+    const FlatPose turned = look.waypoints[0].pose;
+    EXPECT_TRUE(turned.position.isApprox(root));
+    const double halfFov = 0.5 * GainParams::fromConfig(*test::configFromText(daepText())).hfov;
+    for (const Eigen::Vector2d& walkway : {west, south}) {
+        const Eigen::Vector2d d = walkway - root.head<2>();
+        EXPECT_LT(std::abs(wrapAngle(std::atan2(d.y(), d.x()) - turned.yaw)), halfFov)
+            << walkway.transpose() << " " << look.reason;
+    }
+    // The look flown, the camera saw nobody there: the stop needs no second look.
+    ctx.pose = turned;
+    ctx.time = look.waypoints[0].arrivalTime;
+    planner.keepFlying(ctx, Plan{}, 0);
+    ctx.time += 0.2;
+    const Plan go = planner.plan(ctx);
+    ASSERT_FALSE(go.waypoints.empty());
+    EXPECT_EQ(go.reason.rfind("look:", 0), std::string::npos) << go.reason;
+}
+
 TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
     const std::vector<PersonForecast> nobody;
     {

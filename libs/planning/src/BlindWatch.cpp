@@ -33,6 +33,14 @@ void BlindWatch::see(const FlatPose& camera, double hfov, double t, const Dynami
     spread(dfm, t);
 }
 
+BlindWatch BlindWatch::afterLook(const FlatPose& camera, double hfov, double t,
+                                 const DynamicFrequencyMap& dfm,
+                                 const mapping::ExplorationMap* map) const {
+    BlindWatch looked = *this;
+    looked.see(camera, hfov, t, dfm, {}, map);
+    return looked;
+}
+
 void BlindWatch::markView(const FlatPose& camera, double hfov, double t,
                           const mapping::ExplorationMap* map) {
     const Eigen::Vector2d eye = camera.position.head<2>();

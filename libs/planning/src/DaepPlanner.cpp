@@ -25,6 +25,8 @@ constexpr double kDfmPeriod = 0.2;
 constexpr double kDfmFreshness = 0.5;
 /** How far (m) over the height that clears every body a stop over the heads is put. */
 constexpr double kOverHeads = 0.05;
+/** Headings a look before a stop may take, evenly around (besides the worst walkway's). */
+constexpr int kLookDirections = 16;
 
 bool samePositions(const std::vector<Waypoint>& a, const std::vector<Waypoint>& b) {
     return std::equal(
@@ -188,6 +190,37 @@ const Waypoint* DaepPlanner::guardedStop(const Plan& plan) const {
     return nullptr;
 }
 
+std::optional<DaepPlanner::Look> DaepPlanner::bestLook(const PlanningContext& context,
+                                                       const Waypoint& stop,
+                                                       const BlindThreat& threat) const {
+    // At the worst walkway first, then all around, the smaller turns first.
+    const Eigen::Vector2d d = threat.cell - context.pose.position.head<2>();
+    std::vector<double> yaws{std::atan2(d.y(), d.x())};
+    for (int k = 1; k < kLookDirections; ++k)
+        yaws.push_back(context.pose.yaw + 2.0 * M_PI * k / kLookDirections);
+    std::stable_sort(yaws.begin() + 1, yaws.end(), [&](double a, double b) {
+        return std::abs(wrapAngle(a - context.pose.yaw)) <
+               std::abs(wrapAngle(b - context.pose.yaw));
+    });
+    const double hfov = gainEvaluator().params().hfov;
+    const double stay = stop.arrivalTime - context.time + params_.blind.stopTime;
+    std::optional<Look> best;
+    for (const double yaw : yaws) {
+        const FlatPose pose{context.pose.position, wrapAngle(yaw)};
+        if (!timeAware_.timedValid(context.pose, context.time, pose))
+            continue;
+        const double end = context.time + context.motion.travelTime(context.pose, pose);
+        // Re-planned after the look, the drone reaches the stop as much later.
+        const BlindThreat left = watch_.afterLook(pose, hfov, end, dfm_, context.map)
+                                     .worstThreat(dfm_, stop.pose.position.head<2>(), end,
+                                                  end + stay, obstacles_.bodyKeepOut());
+        const double threatLeft = std::max(0.0, left.excess);
+        if (!best || threatLeft < best->threatLeft - 1e-9)
+            best = Look{pose, end, threatLeft};
+    }
+    return best;
+}
+
 bool DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
     const Waypoint* stop = guardedStop(plan);
     const std::optional<BlindThreat> threat =
@@ -198,19 +231,19 @@ bool DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
         looks_ = 0;
         return false;
     }
-    const Eigen::Vector2d d = threat->cell - context.pose.position.head<2>();
-    const FlatPose look{context.pose.position, std::atan2(d.y(), d.x())};
-    if (!timeAware_.timedValid(context.pose, context.time, look)) {
+    const std::optional<Look> look = bestLook(context, *stop, *threat);
+    if (!look) {
         looks_ = 0;
         return false;
     }
     ++looks_;
     std::ostringstream why;
     why << "look: a person unseen could reach the next stop (by " << threat->excess
-        << " m) from the walkway at " << threat->cell.x() << ", " << threat->cell.y();
+        << " m) from the walkway at " << threat->cell.x() << ", " << threat->cell.y()
+        << "; the look leaves " << look->threatLeft << " m";
     Plan out;
     out.status = Plan::Status::Path;
-    out.waypoints.push_back({look, context.time + context.motion.travelTime(context.pose, look)});
+    out.waypoints.push_back({look->pose, look->end});
     out.tree = std::move(plan.tree);
     out.reason = why.str();
     plan = std::move(out);

@@ -51,6 +51,10 @@ public:
     void see(const FlatPose& camera, double hfov, double t, const DynamicFrequencyMap& dfm,
              const std::vector<Eigen::Vector2d>& people = {},
              const mapping::ExplorationMap* map = nullptr);
+    /** This watch as it would be had the camera at `camera` looked at time t and seen nobody. */
+    BlindWatch afterLook(const FlatPose& camera, double hfov, double t,
+                         const DynamicFrequencyMap& dfm,
+                         const mapping::ExplorationMap* map = nullptr) const;
     /** The worst threat, at time `now`, to a drone staying at p until `until`, bodies kept
      * `keepOut` m apart. */
     BlindThreat worstThreat(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& p, double now,

@@ -168,9 +168,22 @@ private:
      */
     std::optional<BlindThreat> blindThreat(const PlanningContext& context,
                                            const Eigen::Vector3d& stop, double until) const;
+    /** A turn on the spot to look for people unseen, and the blind threat it leaves. */
+    struct Look {
+        FlatPose pose;
+        double end = 0.0;         ///< when the turn ends
+        double threatLeft = 0.0;  ///< m the worst unseen walker still reaches the stop by
+    };
     /**
-     * Replaces the plan by a turn to look at the worst blind threat to its first stop, if any
-     * (then returns true).
+     * Of the turns towards the worst walkway and all around that are safe from the people
+     * tracked, the one that leaves the least blind threat to `stop` (the first such, at the
+     * worst walkway or else the smallest turn); none if no turn is safe.
+     */
+    std::optional<Look> bestLook(const PlanningContext& context, const Waypoint& stop,
+                                 const BlindThreat& threat) const;
+    /**
+     * Replaces the plan by the best look (bestLook) for the blind threat to its first stop,
+     * if any (then returns true).
      */
     bool lookBeforeStop(const PlanningContext& context, Plan& plan);
     /**
