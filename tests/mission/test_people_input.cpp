@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -170,6 +171,18 @@ TEST_F(SensedPeople, GroundTruthTracksEveryoneWherever) {
     input.observe(0.0, people, caster, camera, cameraParams, body);
     EXPECT_EQ(input.forecasts().size(), 2u);
     EXPECT_TRUE(input.forecasts()[1].state.head<2>().isApprox(Eigen::Vector2d(4.5, 4.0)));
+}
+
+TEST(PeopleInputParams, TheCameraFindsPeopleAsFarAsItsSourceReaches) {
+    const auto range = [](const std::string& source) {
+        const mrpt::config::CConfigFileMemory cfg(trackingSection(source));
+        const PeopleInputParams params = PeopleInputParams::fromConfig(cfg);
+        return std::make_pair(PeopleInput(params, 1).seeingRange(), params.detector.maxRange);
+    };
+    EXPECT_EQ(range("sensed").first, 5.0);  // sensed_range
+    const auto [detected, detectorRange] = range("detected");
+    EXPECT_EQ(detected, detectorRange);
+    EXPECT_EQ(range("ground_truth").first, std::numeric_limits<double>::infinity());
 }
 
 TEST(PeopleInputParams, RejectsAnUnknownSourceNamingTheKey) {

@@ -537,6 +537,24 @@ TEST_F(DaepRoom, ALookBeforeAStopTurnsToSeeEveryWalkwayThatThreatensIt) {
     EXPECT_EQ(go.reason.rfind("look:", 0), std::string::npos) << go.reason;
 }
 
+TEST_F(DaepRoom, TheBlindWatchCountsAsSeenOnlyWhatTheCameraFindsPeopleIn) {
+    // Facing +x down the 8 m room: a cell 5.5 m ahead is seen by a camera that finds people up
+    // to blind_watch_range (10 m), not by one whose detector stops at 5 m.
+    const Eigen::Vector2d near(4.5, 2.5), far(7.5, 2.5);
+    for (const double range : {std::numeric_limits<double>::infinity(), 5.0}) {
+        std::unique_ptr<DaepPlanner> planner = newPlanner(3);
+        PlanningContext ctx = contextFor(*map, root);
+        ctx.peopleFromCamera = true;
+        ctx.peopleRange = range;
+        const std::vector<PersonForecast> nobody;
+        ctx.people = &nobody;
+        ctx.time = 1.0;
+        planner->keepFlying(ctx, Plan{}, 0);
+        EXPECT_EQ(planner->blindWatch().lastSeen(near), 1.0) << range;
+        EXPECT_EQ(planner->blindWatch().lastSeen(far) == 1.0, range > 5.5) << range;
+    }
+}
+
 TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
     const std::vector<PersonForecast> nobody;
     {

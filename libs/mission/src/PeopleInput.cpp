@@ -1,6 +1,7 @@
 #include "daep/mission/PeopleInput.h"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "daep/common/Config.h"
@@ -94,6 +95,18 @@ void PeopleInput::detect(double t, const mrpt::obs::CObservation3DRangeScan& fra
     detections_ = detector_.detect(frame, robot, map);
     tracker_.update(t, detections_, perception::seenEmptyIn(&frame, robot, bodySize));
     forecasts_ = tracker_.forecasts();
+}
+
+double PeopleInput::seeingRange() const {
+    switch (params_.source) {
+        case PeopleSource::Sensed:
+            return params_.sensedRange;
+        case PeopleSource::Detected:
+            return params_.detector.maxRange;
+        case PeopleSource::GroundTruth:
+            break;
+    }
+    return std::numeric_limits<double>::infinity();
 }
 
 bool PeopleInput::visible(const world::RayCaster& scene, const FlatPose& sensor,

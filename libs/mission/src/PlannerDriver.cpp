@@ -31,6 +31,7 @@ planning::PlanningContext PlannerDriver::context(double t, const FlatPose& pose)
     if (usesPeople_ && setup_.people) {
         ctx.people = &setup_.people->forecasts();
         ctx.peopleFromCamera = setup_.people->fromCamera();
+        ctx.peopleRange = setup_.people->seeingRange();
     }
     return ctx;
 }

@@ -104,7 +104,9 @@ void DaepPlanner::observePeople(const PlanningContext& context) {
     obstacles_ = obstaclesOf(context);
     if (dfm_.width() == 0) {
         dfm_ = DynamicFrequencyMap(context.explorationBox, params_.dfmCellSize);
-        watch_ = BlindWatch(dfm_, params_.blind);
+        BlindWatchParams blind = params_.blind;
+        blind.range = std::min(blind.range, context.peopleRange);  // unseen beyond the camera's
+        watch_ = BlindWatch(dfm_, blind);
     }
     guardingBlind_ = isOn(params_.blindGuard, context.peopleFromCamera);
     flyingOverHeads_ = isOn(params_.flyOverHeads, context.peopleFromCamera);

@@ -99,6 +99,8 @@ public:
     bool detects() const { return params_.source == PeopleSource::Detected; }
     /** Whether people are known only where the camera looks (sensed or detected). */
     bool fromCamera() const { return params_.source != PeopleSource::GroundTruth; }
+    /** How far (m) the source finds people: sensed_range, the detector's max_range, or all. */
+    double seeingRange() const;
     bool excludesFromMap() const { return params_.excludeFromMap; }
     /**
      * With people_source = detected: finds people in the frame seen from `robot`; call it

@@ -97,6 +97,7 @@ public:
 
     const DaepParams& daepParams() const { return params_; }
     const DynamicFrequencyMap& frequencyMap() const { return dfm_; }
+    const BlindWatch& blindWatch() const { return watch_; }
     const DynamicObstacles& obstacles() const { return obstacles_; }
 
     /**

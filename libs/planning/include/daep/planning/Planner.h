@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -99,6 +100,8 @@ struct PlanningContext {
     const std::vector<perception::PersonForecast>* people = nullptr;
     /** The people come from the drone's own camera: nobody is known where it does not look. */
     bool peopleFromCamera = false;
+    /** How far (m) the camera finds people (peopleFromCamera): nobody farther is seen. */
+    double peopleRange = std::numeric_limits<double>::infinity();
     Eigen::Vector3d droneSize{0.4, 0.4, 0.1};
     Eigen::Vector3d personSize{1.0, 1.0, 1.8};
     PlanningDeadline deadline;
