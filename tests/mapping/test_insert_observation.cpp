@@ -172,6 +172,34 @@ TEST(InsertObservation, ReturnsOnAPersonClearUpToThemAndMarkNothing) {
     EXPECT_TRUE(plain.isOccupied({3.0, 0.0, 0.0}));
 }
 
+TEST(InsertObservation, ReturnsInsideTheDronesOwnBodyMarkNothing) {
+    // Something 0.05 m in front of the camera: inside the drone's 0.4 x 0.4 x 0.1 m box (a
+    // person's box the drone is in), it is no wall; 0.3 m away it is.
+    Aabb box;
+    box.min = {-2, -2, -1};
+    box.max = {2, 2, 2};
+    MapParams params;
+    params.bodyHalfExtents = {0.2, 0.2, 0.05};
+    const FlatPose drone = makePose(0.1, 0.1, 0.5, 0.3);
+    // Where pixel (2, 2) of a 4 x 4 frame at `depth` returns: half a pixel right of and below
+    // the optical axis (f = 2 pixels).
+    const auto returnOf = [&drone](double depth) {
+        const Eigen::Vector3d ahead(std::cos(drone.yaw), std::sin(drone.yaw), 0.0);
+        const Eigen::Vector3d left(-std::sin(drone.yaw), std::cos(drone.yaw), 0.0);
+        return Eigen::Vector3d(drone.position +
+                               depth * (ahead - 0.25 * left - Eigen::Vector3d(0, 0, 0.25)));
+    };
+    const auto near = makeFrame(4, 4, 0.05, mrpt::poses::CPose3D());
+    ExplorationMap map(params, box);
+    map.insertObservation(near, drone);
+    EXPECT_FALSE(map.isOccupied(returnOf(0.05)));
+    ExplorationMap bodiless(MapParams{}, box);
+    bodiless.insertObservation(near, drone);
+    EXPECT_TRUE(bodiless.isOccupied(returnOf(0.05)));
+    map.insertObservation(makeFrame(4, 4, 0.3, mrpt::poses::CPose3D()), drone);
+    EXPECT_TRUE(map.isOccupied(returnOf(0.3)));
+}
+
 TEST(InsertObservation, NoReturnPixelsClearTheirRaysOnlyWhenAskedTo) {
     Aabb box;
     box.min = {-1, -8, -4};

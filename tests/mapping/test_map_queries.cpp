@@ -94,6 +94,23 @@ TEST_F(FreeBlockMap, GrazedSurfaceBesideAnOccupiedCellBlocksTheCapsule) {
     EXPECT_TRUE(map_.isSegmentFree(from, to, 0.3));
 }
 
+TEST_F(FreeBlockMap, ACellTheDroneHasBeenInIsNoGrazedSurface) {
+    // A, hit once (a walker passing), then seen through, beside B, occupied: a grazed surface,
+    // until the drone's centre is in A. A wall reaching into A would be inside the drone.
+    const Eigen::Vector3i a(10, 4, 2), b(10, 5, 2);
+    for (int i = 0; i < 3; ++i)
+        test::occupy(map_, cellCentre(b, kRes));
+    hitThenSeeThrough(map_, a);
+    const Eigen::Vector3d inA = cellCentre(a, kRes) + Eigen::Vector3d(0.03, -0.05, 0.02);
+    EXPECT_FALSE(map_.isSegmentFreeOrUnknown(inA, inA, 0.0));
+    EXPECT_FALSE(map_.isSegmentFree(inA + Eigen::Vector3d(-1, -0.1, 0), inA, 0.05));
+    map_.markFlown(inA);
+    EXPECT_TRUE(map_.isSegmentFreeOrUnknown(inA, inA, 0.0));
+    EXPECT_TRUE(map_.isSegmentFree(inA + Eigen::Vector3d(-1, -0.1, 0), inA, 0.05));
+    // B itself stays what it is.
+    EXPECT_FALSE(map_.isSegmentFree(cellCentre(b, kRes), cellCentre(b, kRes), 0.0));
+}
+
 TEST_F(FreeBlockMap, ACapsuleAskedAgainSeesWhatChangedInItsRowsAndBesideThem) {
     // Each answer below follows one that passed over the same rows: what the map learnt of
     // those rows must not outlive a change in them or in the rows beside them.

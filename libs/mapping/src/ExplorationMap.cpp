@@ -323,6 +323,7 @@ MapParams MapParams::fromConfig(const mrpt::config::CConfigFileBase& cfg) {
     p.clampMin = r.requireDouble("clamp_min");
     p.clampMax = r.requireDouble("clamp_max");
     p.noReturnIsFree = r.requireBool("no_return_free");
+    p.bodyHalfExtents = 0.5 * requirePositiveXyz(ConfigReader(cfg, "drone"), "box");
     return p;
 }
 

@@ -17,6 +17,31 @@ std::uint64_t pack(const octomap::OcTreeKey& k) {
     return std::uint64_t(k[0]) | std::uint64_t(k[1]) << 16 | std::uint64_t(k[2]) << 32;
 }
 
+/** The drone's body box where it flies: whether a world point lies inside it. */
+class Body {
+public:
+    Body(const FlatPose& robot, const Eigen::Vector3d& half)
+        : centre_(robot.position.cast<float>()),
+          half_(half.cast<float>()),
+          cos_(float(std::cos(robot.yaw))),
+          sin_(float(std::sin(robot.yaw))),
+          reach2_(half_.squaredNorm()) {}
+
+    bool contains(const Eigen::Vector3f& p) const {
+        const Eigen::Vector3f d = p - centre_;
+        if (!(reach2_ > 0.0f) || d.squaredNorm() > reach2_)
+            return false;
+        const float forward = cos_ * d.x() + sin_ * d.y();
+        const float left = -sin_ * d.x() + cos_ * d.y();
+        return std::abs(forward) <= half_.x() && std::abs(left) <= half_.y() &&
+               std::abs(d.z()) <= half_.z();
+    }
+
+private:
+    Eigen::Vector3f centre_, half_;
+    float cos_, sin_, reach2_;
+};
+
 }  // namespace
 
 SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
@@ -81,6 +106,7 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
     const float maxRange2 = float(params_.maxRange * params_.maxRange);
     const SensorFrame frame = sensorFrameInWorld(obs, robot);
     const PeopleBuckets onPeople(people);
+    const Body body(robot, params_.bodyHalfExtents);
     m.cloud.clear();
     m.rowAbove.assign(std::size_t(obs.rangeImage.cols()), kNoKey);
     forEachDepthRow(obs, frame, [&](int, const DepthRow& row) {
@@ -93,6 +119,11 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
             }
             const Eigen::Vector3f p(row.x[u], row.y[u], row.z[u]);
             std::uint64_t& above = m.rowAbove[u];
+            if (body.contains(p)) {
+                previous = kNoKey;
+                above = kNoKey;
+                continue;
+            }
             if (!people.empty() && (p - frame.origin).squaredNorm() <= maxRange2 &&
                 onPeople.contains(p)) {
                 m.personKeys.insert(key);
@@ -111,7 +142,17 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
         addNoReturnRays(obs, frame);
     const octomap::point3d o(frame.origin.x(), frame.origin.y(), frame.origin.z());
     knownInBox_ += m.integrate(o, params_.maxRange);
+    markFlown(robot.position);
     ++revision_;
+}
+
+void ExplorationMap::markFlown(const Eigen::Vector3d& position) {
+    Impl& m = *impl_;
+    const std::int64_t i = gridIndex_(position);
+    if (i < 0 || (m.flags[std::size_t(i)] & Impl::kFlown))
+        return;
+    m.flags[std::size_t(i)] |= Impl::kFlown;
+    m.passCellChanged(i);
 }
 
 void ExplorationMap::addNoReturnRays(const mrpt::obs::CObservation3DRangeScan& obs,

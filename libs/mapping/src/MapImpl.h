@@ -31,6 +31,8 @@ struct ExplorationMap::Impl {
     static constexpr std::uint8_t kEverHit = 1, kFreeNow = 2, kOccupiedNow = 4, kEndNow = 8;
     static constexpr std::uint8_t kFrameMarks = kFreeNow | kOccupiedNow | kEndNow;
     static constexpr std::uint8_t kClampedFree = 16, kClampedOccupied = 32;
+    /// The drone's centre has been in the cell: whatever rays ended in it, no wall grazes it.
+    static constexpr std::uint8_t kFlown = 64;
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
 

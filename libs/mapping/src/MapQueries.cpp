@@ -275,7 +275,7 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
 
 bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key) const {
     const std::int64_t i = gridIndex(key);
-    if (i < 0 || !(flags[std::size_t(i)] & kEverHit) ||
+    if (i < 0 || !(flags[std::size_t(i)] & kEverHit) || (flags[std::size_t(i)] & kFlown) ||
         cells[std::size_t(i)] != std::uint8_t(CellState::Free))
         return false;
     bool interior = true;  // all six neighbours on the grid: read them off it

@@ -49,6 +49,12 @@ struct MapParams {
      * clear their ray up to maxRange: outdoors the open sky is otherwise never known.
      */
     bool noReturnIsFree = true;
+    /**
+     * The drone's own body, a box (half extents, in its frame, centred on its position).
+     * Returns inside it are not mapped: only the drone itself, or a person it is inside, can
+     * be there. Zero: no body.
+     */
+    Eigen::Vector3d bodyHalfExtents = Eigen::Vector3d::Zero();
 
     /** Reads and validates [map]; throws InputError naming the key. */
     static MapParams fromConfig(const mrpt::config::CConfigFileBase& cfg);
@@ -165,6 +171,12 @@ public:
 
     /** Writes the octree as a binary .bt file (octovis). Returns false on I/O failure. */
     bool writeBinary(const std::string& path) const;
+
+    /**
+     * The drone's centre is at `position`: its cell counts as no grazed surface from now on (a
+     * surface in it would lie inside the drone). insertObservation marks the robot's position.
+     */
+    void markFlown(const Eigen::Vector3d& position);
 
     /** Number of insertions so far; planners use it to know the map changed. */
     std::uint64_t revision() const { return revision_; }
