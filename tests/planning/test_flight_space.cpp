@@ -106,3 +106,49 @@ TEST(HemmedInBesideAnImprint, ALegOverAFloorOfHeadsKeepsItsBodyClearOfThem) {
 
 }  // namespace
 }  // namespace daep::planning
+
+namespace daep::planning {
+namespace {
+
+/**
+ * The Exhibition corner (detected people, seed 2): an untracked walker's side mapped as a sheet
+ * of cells in the drone's own column, its own cell among them, after it stopped there.
+ */
+struct InAnImprint : ::testing::Test {
+    InAnImprint() : map(test::makeMap(test::box(0, 0, 0, 8, 6, 2), 10.0)) {
+        map->insertPointCloud(
+            drone, test::roomScan(test::box(-0.1, -0.1, -0.1, 8.1, 6.1, 2.1), drone, 0.5));
+        std::vector<Eigen::Vector3f> sheet;
+        addBlock(sheet, {4.0, 2.4, 0.6}, {4.2, 3.2, 1.4});  // x column 4.0-4.2, y up to 3.2
+        map->insertPointCloud({5.5, 2.8, 1.0}, sheet);
+    }
+    std::unique_ptr<mapping::ExplorationMap> map;
+    const double radius = 0.3, halfHeight = 0.05;
+    const Eigen::Vector3d drone{4.1, 3.12, 1.1};  // inside the sheet's top end cell
+};
+
+TEST_F(InAnImprint, ItLeavesByALineThatEntersNoFurtherOccupiedCell) {
+    ASSERT_TRUE(map->isOccupied(drone));
+    ASSERT_EQ(clearanceFromOccupied(*map, drone, radius), -1.0);
+    // Away from the sheet, east or north: no further occupied cell on the way.
+    EXPECT_TRUE(segmentFlyable(*map, drone, {5.2, 3.12, 1.1}, radius, halfHeight, true));
+    EXPECT_TRUE(segmentFlyable(*map, drone, {4.1, 4.2, 1.1}, radius, halfHeight, true));
+    // Along the sheet, south through it: the line enters its other cells.
+    EXPECT_FALSE(segmentFlyable(*map, drone, {4.1, 1.8, 1.1}, radius, halfHeight, true));
+    // Never when the drone is not known to be blocked.
+    EXPECT_FALSE(segmentFlyable(*map, drone, {5.2, 3.12, 1.1}, radius, halfHeight, false));
+}
+
+TEST_F(InAnImprint, ItsBodyStillMeetsNothingNewOnTheWayOut) {
+    // A post 0.08 m beside the way east: the line misses it, the body would not.
+    std::vector<Eigen::Vector3f> post;
+    addBlock(post, {5.0, 3.2, 0.0}, {5.2, 3.4, 2.0});
+    map->insertPointCloud({5.5, 2.8, 1.0}, post);
+    const Eigen::Vector3d east(6.0, 3.12, 1.1);
+    ASSERT_TRUE(map->isSegmentFreeOrUnknown(drone + Eigen::Vector3d(0.11, 0, 0), east, 0.0));
+    EXPECT_FALSE(segmentFlyable(*map, drone, east, radius, halfHeight, true));
+    EXPECT_TRUE(segmentFlyable(*map, drone, {5.0, 4.8, 1.1}, radius, halfHeight, true));
+}
+
+}  // namespace
+}  // namespace daep::planning

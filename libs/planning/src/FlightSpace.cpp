@@ -1,5 +1,6 @@
 #include "daep/planning/FlightSpace.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "daep/mapping/ExplorationMap.h"
@@ -52,6 +53,33 @@ double clearanceFromOccupied(const mapping::ExplorationMap& map, const Eigen::Ve
     return clear;
 }
 
+namespace {
+
+/**
+ * Whether the line a -> b meets no occupied cell once it has left a's own cell. A drone with no
+ * clearance at all (its cell, or one it touches, holds an imprint mapped after it stopped there)
+ * may leave along any line that enters no further occupied cell: not deeper into what it
+ * touches.
+ */
+bool isLineClearPastOwnCell(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
+                            const Eigen::Vector3d& b) {
+    const Eigen::Vector3d d = b - a;
+    const Eigen::Vector3d centre = map.cellCenter(a);
+    const double half = 0.5 * map.resolution();
+    double leave = 1.0;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (d[axis] != 0.0) {
+            const double wall = centre[axis] + (d[axis] > 0.0 ? half : -half);
+            leave = std::min(leave, (wall - a[axis]) / d[axis]);
+        }
+    }
+    constexpr double kPastTheFace = 1e-6;  // metres: off the face shared with a's cell
+    const double t = std::min(1.0, std::max(0.0, leave) + kPastTheFace / std::max(d.norm(), 1e-12));
+    return map.isSegmentFreeOrUnknown(a + d * t, b, 0.0);
+}
+
+}  // namespace
+
 bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
                     const Eigen::Vector3d& b, double radius, double halfHeight,
                     bool leavingBlockedRoot) {
@@ -69,7 +97,9 @@ bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a
     // clearance holds for what is near the drone only: a leg out along the end of a wall at
     // it would hit the wall, while one over a blob of mapped heads must stay possible.
     const double clear = clearanceFromOccupied(map, a, radius);
-    return clear > 0.0 && map.isSegmentFreeOrUnknown(a, b, clear) &&
+    const bool keepsClearance =
+        clear > 0.0 ? map.isSegmentFreeOrUnknown(a, b, clear) : isLineClearPastOwnCell(map, a, b);
+    return keepsClearance &&
            map.isSweptBoxClearOfNew(a, b, Eigen::Vector3d(radius, radius, halfHeight));
 }
 
