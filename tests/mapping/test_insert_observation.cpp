@@ -178,8 +178,8 @@ TEST(InsertObservation, ReturnsInsideTheDronesOwnBodyMarkNothing) {
     Aabb box;
     box.min = {-2, -2, -1};
     box.max = {2, 2, 2};
-    MapParams params;
-    params.bodyHalfExtents = {0.2, 0.2, 0.05};
+    const MapParams params;  // the default body: [drone] box of defaults.ini
+    ASSERT_EQ(params.bodyHalfExtents, Eigen::Vector3d(0.2, 0.2, 0.05));
     const FlatPose drone = makePose(0.1, 0.1, 0.5, 0.3);
     // Where pixel (2, 2) of a 4 x 4 frame at `depth` returns: half a pixel right of and below
     // the optical axis (f = 2 pixels).
@@ -193,7 +193,9 @@ TEST(InsertObservation, ReturnsInsideTheDronesOwnBodyMarkNothing) {
     ExplorationMap map(params, box);
     map.insertObservation(near, drone);
     EXPECT_FALSE(map.isOccupied(returnOf(0.05)));
-    ExplorationMap bodiless(MapParams{}, box);
+    MapParams noBody;
+    noBody.bodyHalfExtents.setZero();
+    ExplorationMap bodiless(noBody, box);
     bodiless.insertObservation(near, drone);
     EXPECT_TRUE(bodiless.isOccupied(returnOf(0.05)));
     map.insertObservation(makeFrame(4, 4, 0.3, mrpt::poses::CPose3D()), drone);

@@ -62,6 +62,8 @@ TEST_F(ComponentDefaults, Map) {
                 {"clamp_min", d.clampMin, i.clampMin},
                 {"clamp_max", d.clampMax, i.clampMax},
                 {"no_return_free", d.noReturnIsFree, i.noReturnIsFree}});
+    for (int a = 0; a < 3; ++a)
+        EXPECT_DOUBLE_EQ(d.bodyHalfExtents[a], i.bodyHalfExtents[a]) << "[drone] box, axis " << a;
 }
 
 TEST_F(ComponentDefaults, Detector) {

@@ -52,9 +52,9 @@ struct MapParams {
     /**
      * The drone's own body, a box (half extents, in its frame, centred on its position).
      * Returns inside it are not mapped: only the drone itself, or a person it is inside, can
-     * be there. Zero: no body.
+     * be there. Zero: no body. By default the [drone] box of defaults.ini, halved.
      */
-    Eigen::Vector3d bodyHalfExtents = Eigen::Vector3d::Zero();
+    Eigen::Vector3d bodyHalfExtents{0.2, 0.2, 0.05};
 
     /** Reads and validates [map]; throws InputError naming the key. */
     static MapParams fromConfig(const mrpt::config::CConfigFileBase& cfg);
