@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "FrameStep.h"
@@ -112,6 +113,31 @@ std::string safeWithPersonAt(const Eigen::Vector2d& person, const std::string& n
 TEST(PlannerDriver, AReplayedPlanThroughAWalkerIsUnsafeAndAroundItSafe) {
     EXPECT_EQ(safeWithPersonAt({2.0, 0.0}, "through"), "0");
     EXPECT_EQ(safeWithPersonAt({2.0, 4.0}, "beside"), "1");
+}
+
+/** The planner is told what the people source sees and how far: the blind guard needs both. */
+TEST(PlannerDriver, AContextCarriesThePeopleSourcesReachForAPlannerThatUsesPeople) {
+    for (const std::string source : {"ground_truth", "sensed", "detected"}) {
+        const auto config = ExperimentConfig::fromFile(
+            kTinyRoom, {"tracking.people_source=" + source, "tracking.sensed_range=7.5",
+                        "detector.max_range=4.5"});
+        Aabb box;
+        box.min = {-6, -6, 0};
+        box.max = {6, 6, 3};
+        mapping::ExplorationMap map(mapping::MapParams{}, box);
+        PeopleInput people(PeopleInputParams::fromConfig(config.config()), 1);
+        PlannerDriver::Setup setup;
+        setup.map = &map;
+        setup.people = &people;
+        PlannerDriver driver(std::make_unique<GivenPathThroughDaep>(config.config()), setup);
+        const planning::PlanningContext ctx = driver.context(0.0, at(0.0, 0.0, 1.0));
+        EXPECT_EQ(ctx.people, &people.forecasts()) << source;
+        EXPECT_EQ(ctx.peopleFromCamera, source != "ground_truth") << source;
+        const double range = source == "sensed"     ? 7.5
+                             : source == "detected" ? 4.5
+                                                    : std::numeric_limits<double>::infinity();
+        EXPECT_EQ(ctx.peopleRange, range) << source;
+    }
 }
 
 /** The simulator is a frame source like any other: a frame every camera period, in order. */
