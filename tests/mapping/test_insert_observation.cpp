@@ -6,28 +6,12 @@
 #include <cmath>
 #include <random>
 
+#include "DepthFrames.h"
 #include "daep/mapping/DepthUnprojection.h"
 #include "daep/mapping/ExplorationMap.h"
 
 namespace daep::mapping {
 namespace {
-
-/** A depth camera frame (range_is_depth) filled with `depth` metres everywhere. */
-mrpt::obs::CObservation3DRangeScan makeFrame(int width, int height, double depth,
-                                             const mrpt::poses::CPose3D& sensorPose) {
-    mrpt::obs::CObservation3DRangeScan obs;
-    obs.hasRangeImage = true;
-    obs.range_is_depth = true;
-    obs.rangeUnits = 0.001f;
-    obs.rangeImage_setSize(height, width);
-    obs.rangeImage.fill(std::uint16_t(std::lround(depth / obs.rangeUnits)));
-    obs.cameraParams.ncols = std::uint32_t(width);
-    obs.cameraParams.nrows = std::uint32_t(height);
-    const double f = 0.5 * width;  // 90 degree horizontal field of view
-    obs.cameraParams.setIntrinsicParamsFromValues(f, f, 0.5 * (width - 1), 0.5 * (height - 1));
-    obs.sensorPose = sensorPose;
-    return obs;
-}
 
 FlatPose makePose(double x, double y, double z, double yaw) {
     FlatPose p;
@@ -38,7 +22,7 @@ FlatPose makePose(double x, double y, double z, double yaw) {
 
 TEST(DepthUnprojection, MatchesMrptUnprojectInto) {
     const mrpt::poses::CPose3D sensorPose(0.12, -0.05, 0.2, 0.3, 0.25, -0.1);
-    auto obs = makeFrame(64, 48, 3.0, sensorPose);
+    auto obs = test::depthFrame(64, 48, 3.0, sensorPose);
     std::mt19937 rng(5);
     std::uniform_int_distribution<int> depthMm(0, 9000);
     for (int r = 0; r < 48; ++r) {
@@ -69,7 +53,7 @@ TEST(DepthUnprojection, MatchesMrptUnprojectInto) {
 
 TEST(DepthUnprojection, AxesAreXForwardYLeftZUp) {
     // Odd size so that the principal point is a pixel centre.
-    const auto obs = makeFrame(5, 3, 2.0, mrpt::poses::CPose3D());
+    const auto obs = test::depthFrame(5, 3, 2.0, mrpt::poses::CPose3D());
     const auto pts = unprojectDepthImage(obs, FlatPose{});
     ASSERT_EQ(pts.size(), 15u);
     // Row 1, column 2 is the principal point.
@@ -89,7 +73,7 @@ void checkWall(const FlatPose& robot, const mrpt::poses::CPose3D& sensorPose, do
     box.min = {-10, -10, -2};
     box.max = {10, 10, 5};
     ExplorationMap map(MapParams{}, box);
-    const auto obs = makeFrame(160, 120, depth, sensorPose);
+    const auto obs = test::depthFrame(160, 120, depth, sensorPose);
     map.insertObservation(obs, robot);
     EXPECT_EQ(map.revision(), 1u);
 
@@ -132,7 +116,7 @@ TEST(InsertObservation, PitchedSensorSeesTheFloor) {
     box.min = {-5, -5, -2};
     box.max = {5, 5, 4};
     ExplorationMap map(MapParams{}, box);
-    auto obs = makeFrame(160, 120, depth, sensorPose);
+    auto obs = test::depthFrame(160, 120, depth, sensorPose);
     map.insertObservation(obs, makePose(0.0, 0.0, 2.0, 0.0));
     EXPECT_TRUE(map.isOccupied({2.0, 0.0, 0.0}));
     EXPECT_TRUE(map.isFree({1.0, 0.0, 1.0}));
@@ -144,7 +128,7 @@ TEST(InsertObservation, FarWallOnlyClearsUpToMaxRange) {
     box.min = {-1, -8, -4};
     box.max = {10, 8, 4};
     ExplorationMap map(MapParams{}, box);  // maxRange 5
-    map.insertObservation(makeFrame(80, 60, 8.0, mrpt::poses::CPose3D()), FlatPose{});
+    map.insertObservation(test::depthFrame(80, 60, 8.0, mrpt::poses::CPose3D()), FlatPose{});
     EXPECT_TRUE(map.isFree({4.5, 0.0, 0.0}));
     EXPECT_TRUE(map.isUnknown({5.5, 0.0, 0.0}));
     EXPECT_TRUE(map.isUnknown({8.1, 0.0, 0.0}));
@@ -155,7 +139,7 @@ TEST(InsertObservation, ReturnsOnAPersonClearUpToThemAndMarkNothing) {
     box.min = {-1, -8, -4};
     box.max = {10, 8, 4};
     // A wall 3 m ahead; a person stands in it around y = 0 (their footprint reaches it).
-    const auto wall = makeFrame(80, 60, 3.0, mrpt::poses::CPose3D());
+    const auto wall = test::depthFrame(80, 60, 3.0, mrpt::poses::CPose3D());
     PersonFootprint person;
     person.centre = {3.2f, 0.0f};
     person.radius = 0.6f;
@@ -189,7 +173,7 @@ TEST(InsertObservation, ReturnsInsideTheDronesOwnBodyMarkNothing) {
         return Eigen::Vector3d(drone.position +
                                depth * (ahead - 0.25 * left - Eigen::Vector3d(0, 0, 0.25)));
     };
-    const auto near = makeFrame(4, 4, 0.05, mrpt::poses::CPose3D());
+    const auto near = test::depthFrame(4, 4, 0.05, mrpt::poses::CPose3D());
     ExplorationMap map(params, box);
     map.insertObservation(near, drone);
     EXPECT_FALSE(map.isOccupied(returnOf(0.05)));
@@ -198,7 +182,7 @@ TEST(InsertObservation, ReturnsInsideTheDronesOwnBodyMarkNothing) {
     ExplorationMap bodiless(noBody, box);
     bodiless.insertObservation(near, drone);
     EXPECT_TRUE(bodiless.isOccupied(returnOf(0.05)));
-    map.insertObservation(makeFrame(4, 4, 0.3, mrpt::poses::CPose3D()), drone);
+    map.insertObservation(test::depthFrame(4, 4, 0.3, mrpt::poses::CPose3D()), drone);
     EXPECT_TRUE(map.isOccupied(returnOf(0.3)));
 }
 
@@ -206,7 +190,7 @@ TEST(InsertObservation, NoReturnPixelsClearTheirRaysOnlyWhenAskedTo) {
     Aabb box;
     box.min = {-1, -8, -4};
     box.max = {10, 8, 4};
-    const auto sky = makeFrame(80, 60, 0.0, mrpt::poses::CPose3D());  // nothing returns
+    const auto sky = test::depthFrame(80, 60, 0.0, mrpt::poses::CPose3D());  // nothing returns
     MapParams params;
     params.noReturnIsFree = false;
     ExplorationMap indoor(params, box);
@@ -226,7 +210,7 @@ TEST(InsertObservation, NoReturnPixelsClearTheirRaysOnlyWhenAskedTo) {
         EXPECT_FALSE(outdoor.isOccupied({x, 0.0, 0.0})) << x;
     // Where a pixel does return, its wall is kept as it is.
     ExplorationMap mixed(params, box);
-    mixed.insertObservation(makeFrame(80, 60, 3.0, mrpt::poses::CPose3D()), FlatPose{});
+    mixed.insertObservation(test::depthFrame(80, 60, 3.0, mrpt::poses::CPose3D()), FlatPose{});
     EXPECT_TRUE(mixed.isOccupied({3.0, 0.0, 0.0}));
     EXPECT_TRUE(mixed.isUnknown({4.0, 0.0, 0.0}));
 }
@@ -234,7 +218,7 @@ TEST(InsertObservation, NoReturnPixelsClearTheirRaysOnlyWhenAskedTo) {
 /** The per-row pixel pass against the cloud unprojectDepthImage gives, depth and range images. */
 TEST(InsertObservation, EqualsInsertingTheUnprojectedCloud) {
     for (const bool rangeIsDepth : {true, false}) {
-        auto obs = makeFrame(96, 72, 3.0, mrpt::poses::CPose3D(0.1, 0, 0.1, 0, 0.1, 0));
+        auto obs = test::depthFrame(96, 72, 3.0, mrpt::poses::CPose3D(0.1, 0, 0.1, 0, 0.1, 0));
         obs.range_is_depth = rangeIsDepth;
         std::mt19937 rng(77);
         std::uniform_int_distribution<int> depthMm(0, 7000);

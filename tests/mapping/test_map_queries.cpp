@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
-#include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <algorithm>
 #include <random>
 
+#include "DepthFrames.h"
 #include "MapTestUtils.h"
 #include "daep/common/Geometry.h"
 #include "daep/mapping/ExplorationMap.h"
@@ -44,19 +44,6 @@ void hitThenSeeThrough(ExplorationMap& map, const Eigen::Vector3i& cell) {
     test::occupy(map, cellCentre(cell, kRes));
     for (int i = 0; i < 6; ++i)
         test::freeRow(map, {0, cell.y(), cell.z()});
-}
-
-/** A 4 x 4 depth frame, 90 degrees wide, the camera at the drone's centre: no pixel returns. */
-mrpt::obs::CObservation3DRangeScan emptyDepthFrame() {
-    mrpt::obs::CObservation3DRangeScan obs;
-    obs.hasRangeImage = true;
-    obs.range_is_depth = true;
-    obs.rangeUnits = 0.001f;
-    obs.rangeImage_setSize(4, 4);
-    obs.rangeImage.fill(0);
-    obs.cameraParams.ncols = obs.cameraParams.nrows = 4;
-    obs.cameraParams.setIntrinsicParamsFromValues(2.0, 2.0, 1.5, 1.5);
-    return obs;
 }
 
 TEST_F(FreeBlockMap, BlockIsFreeAndSurroundingsUnknown) {
@@ -108,14 +95,20 @@ TEST_F(FreeBlockMap, GrazedSurfaceBesideAnOccupiedCellBlocksTheCapsule) {
     EXPECT_TRUE(map_.isSegmentFree(from, to, 0.3));
 }
 
-TEST_F(FreeBlockMap, ACellTheDroneHasBeenInIsNoGrazedSurface) {
-    // A, hit once (a walker passing), then seen through, beside B, occupied: a grazed surface,
-    // until the drone's centre is in A. A wall reaching into A would be inside the drone.
-    const Eigen::Vector3i a(10, 4, 2), b(10, 5, 2);
-    for (int i = 0; i < 3; ++i)
-        test::occupy(map_, cellCentre(b, kRes));
-    hitThenSeeThrough(map_, a);
+/** A, hit once (a walker passing), then seen through, beside B, occupied: a grazed surface. */
+class GrazedCellMap : public FreeBlockMap {
+protected:
+    GrazedCellMap() {
+        for (int i = 0; i < 3; ++i)
+            test::occupy(map_, cellCentre(b, kRes));
+        hitThenSeeThrough(map_, a);
+    }
+    const Eigen::Vector3i a{10, 4, 2}, b{10, 5, 2};
     const Eigen::Vector3d inA = cellCentre(a, kRes) + Eigen::Vector3d(0.03, -0.05, 0.02);
+};
+
+TEST_F(GrazedCellMap, ACellTheDroneHasBeenInIsNoGrazedSurface) {
+    // Until the drone's centre is in A. A wall reaching into A would be inside the drone.
     EXPECT_FALSE(map_.isSegmentFreeOrUnknown(inA, inA, 0.0));
     EXPECT_FALSE(map_.isSegmentFree(inA + Eigen::Vector3d(-1, -0.1, 0), inA, 0.05));
     map_.markFlown(inA);
@@ -125,19 +118,14 @@ TEST_F(FreeBlockMap, ACellTheDroneHasBeenInIsNoGrazedSurface) {
     EXPECT_FALSE(map_.isSegmentFree(cellCentre(b, kRes), cellCentre(b, kRes), 0.0));
 }
 
-TEST_F(FreeBlockMap, AFrameTakenFromACellMakesItNoGrazedSurface) {
-    // The same A and B, and a frame taken with the drone's centre in A, looking away from B
-    // (-y) at nothing: inserting it is what tells the map the drone has been in A.
-    const Eigen::Vector3i a(10, 4, 2), b(10, 5, 2);
-    for (int i = 0; i < 3; ++i)
-        test::occupy(map_, cellCentre(b, kRes));
-    hitThenSeeThrough(map_, a);
-    const Eigen::Vector3d inA = cellCentre(a, kRes) + Eigen::Vector3d(0.03, -0.05, 0.02);
+TEST_F(GrazedCellMap, AFrameTakenFromACellMakesItNoGrazedSurface) {
+    // A frame taken with the drone's centre in A, looking away from B (-y) at nothing:
+    // inserting it is what tells the map the drone has been in A.
     ASSERT_FALSE(map_.isSegmentFreeOrUnknown(inA, inA, 0.0));
     FlatPose drone;
     drone.position = inA;
     drone.yaw = -M_PI / 2;
-    map_.insertObservation(emptyDepthFrame(), drone);
+    map_.insertObservation(test::depthFrame(4, 4, 0.0), drone);
     ASSERT_TRUE(map_.isOccupied(cellCentre(b, kRes)));
     EXPECT_TRUE(map_.isSegmentFreeOrUnknown(inA, inA, 0.0));
 }
