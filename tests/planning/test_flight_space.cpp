@@ -150,5 +150,36 @@ TEST_F(InAnImprint, ItsBodyStillMeetsNothingNewOnTheWayOut) {
     EXPECT_TRUE(segmentFlyable(*map, drone, {5.0, 4.8, 1.1}, radius, halfHeight, true));
 }
 
+TEST_F(InAnImprint, ItsLineEntersNoFurtherOccupiedCellWhereItsBodyWouldPass) {
+    // The imprint two cells thick at the drone's height: east, the body's box meets no cell it
+    // did not meet already, but the line runs on through the imprint's second cell.
+    std::vector<Eigen::Vector3f> thicker;
+    addBlock(thicker, {4.2, 2.4, 1.0}, {4.4, 3.2, 1.2});
+    map->insertPointCloud({5.5, 2.8, 1.0}, thicker);
+    ASSERT_TRUE(map->isOccupied({4.3, 3.1, 1.1}));
+    ASSERT_TRUE(map->isSweptBoxClearOfNew(drone, {5.2, 3.12, 1.1}, {radius, radius, halfHeight}));
+    EXPECT_FALSE(segmentFlyable(*map, drone, {5.2, 3.12, 1.1}, radius, halfHeight, true));
+    EXPECT_TRUE(segmentFlyable(*map, drone, {4.1, 4.2, 1.1}, radius, halfHeight, true));
+}
+
+TEST(InATableTop, ADroneWhoseCellHoldsASurfaceDoesNotLeaveThroughIt) {
+    // A table top mapped in the drone's own cell, 5-15 cm below its centre (outside its body,
+    // so the map keeps it): which side of the drone it lies on, the cell cannot tell. Down
+    // through it is no way out, though below it all is free and its body meets nothing new.
+    auto map = test::makeMap(test::box(0, 0, 0, 8, 6, 2), 10.0);
+    const Eigen::Vector3d drone(4.1, 3.1, 1.15);
+    map->insertPointCloud(drone,
+                          test::roomScan(test::box(-0.1, -0.1, -0.1, 8.1, 6.1, 2.1), drone, 0.5));
+    std::vector<Eigen::Vector3f> table;
+    addBlock(table, {3.0, 2.0, 1.0}, {5.0, 4.0, 1.2});
+    map->insertPointCloud({4.0, 3.0, 1.9}, table);
+    ASSERT_TRUE(map->isOccupied(drone));
+    ASSERT_EQ(clearanceFromOccupied(*map, drone, 0.3), -1.0);
+    const Eigen::Vector3d under(4.1, 3.1, 0.5);
+    ASSERT_TRUE(map->isSegmentFree(under, under, 0.3));
+    ASSERT_TRUE(map->isSweptBoxClearOfNew(drone, under, {0.3, 0.3, 0.05}));
+    EXPECT_FALSE(segmentFlyable(*map, drone, under, 0.3, 0.05, true));
+}
+
 }  // namespace
 }  // namespace daep::planning

@@ -56,25 +56,30 @@ double clearanceFromOccupied(const mapping::ExplorationMap& map, const Eigen::Ve
 namespace {
 
 /**
- * Whether the line a -> b meets no occupied cell once it has left a's own cell. A drone with no
- * clearance at all (its cell, or one it touches, holds an imprint mapped after it stopped there)
- * may leave along any line that enters no further occupied cell: not deeper into what it
- * touches.
+ * Whether the line a -> b leaves a's own cell within `halfHeight` of a's height and then meets
+ * no occupied cell. A drone without clearance (its cell, or one it touches, holds an imprint
+ * mapped after it stopped there) may leave along such a line: not deeper into what it touches.
+ * What its own cell holds may lie on either side of it, so the line must not cross it there:
+ * a wall in that cell would reach into the drone's body, but a surface above or below it need
+ * only be `halfHeight` away (the map keeps out returns inside the body alone).
  */
 bool isLineClearPastOwnCell(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
-                            const Eigen::Vector3d& b) {
+                            const Eigen::Vector3d& b, double halfHeight) {
     const Eigen::Vector3d d = b - a;
     const Eigen::Vector3d centre = map.cellCenter(a);
     const double half = 0.5 * map.resolution();
     double leave = 1.0;
     for (int axis = 0; axis < 3; ++axis) {
         if (d[axis] != 0.0) {
-            const double wall = centre[axis] + (d[axis] > 0.0 ? half : -half);
-            leave = std::min(leave, (wall - a[axis]) / d[axis]);
+            const double face = centre[axis] + (d[axis] > 0.0 ? half : -half);
+            leave = std::min(leave, (face - a[axis]) / d[axis]);
         }
     }
+    leave = std::max(0.0, leave);
+    if (std::abs(d.z()) * leave > halfHeight)
+        return false;
     constexpr double kPastTheFace = 1e-6;  // metres: off the face shared with a's cell
-    const double t = std::min(1.0, std::max(0.0, leave) + kPastTheFace / std::max(d.norm(), 1e-12));
+    const double t = std::min(1.0, leave + kPastTheFace / std::max(d.norm(), 1e-12));
     return map.isSegmentFreeOrUnknown(a + d * t, b, 0.0);
 }
 
@@ -97,8 +102,8 @@ bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a
     // clearance holds for what is near the drone only: a leg out along the end of a wall at
     // it would hit the wall, while one over a blob of mapped heads must stay possible.
     const double clear = clearanceFromOccupied(map, a, radius);
-    const bool keepsClearance =
-        clear > 0.0 ? map.isSegmentFreeOrUnknown(a, b, clear) : isLineClearPastOwnCell(map, a, b);
+    const bool keepsClearance = clear > 0.0 ? map.isSegmentFreeOrUnknown(a, b, clear)
+                                            : isLineClearPastOwnCell(map, a, b, halfHeight);
     return keepsClearance &&
            map.isSweptBoxClearOfNew(a, b, Eigen::Vector3d(radius, radius, halfHeight));
 }

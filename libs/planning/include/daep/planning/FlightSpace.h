@@ -24,8 +24,9 @@ Eigen::Vector3d steer(const Eigen::Vector3d& from, const Eigen::Vector3d& to, do
  * its first radius keeps the radius from occupied cells, or the whole move keeps at least the
  * clearance the drone has at a: the drone is physically at a and must be able to leave. Then
  * what hems it in may stay that near, but nothing else may come within the radius sideways or
- * `halfHeight` (its body's) above or below. With no clearance at all (an imprint in or on its
- * own cell), the move's line must enter no occupied cell past that cell, with the same rule
+ * `halfHeight` (its body's) above or below. With no clearance left (an imprint in its own
+ * cell or touching it: under radius / 64), the move's line must leave that cell within
+ * `halfHeight` of the drone's height and enter no occupied cell after it, with the same rule
  * for the body.
  */
 bool segmentFlyable(const mapping::ExplorationMap& map, const Eigen::Vector3d& a,
