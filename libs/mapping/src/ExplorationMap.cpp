@@ -201,10 +201,7 @@ bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) 
  * Every cell is updated once per frame, so the order of updates does not change the tree.
  */
 std::size_t ExplorationMap::Impl::integrate(const octomap::point3d& origin, double maxRange) {
-    for (const octomap::point3d& point : cloud) {
-        octomap::OcTreeKey key;
-        if (!keyOf(point, key) || !mark(key, kEndNow))
-            continue;
+    for (const octomap::OcTreeKey& key : ends) {
         const octomap::point3d end = tree.keyToCoord(key);
         if ((end - origin).norm() <= maxRange) {
             markRay(origin, end);
@@ -216,6 +213,7 @@ std::size_t ExplorationMap::Impl::integrate(const octomap::point3d& origin, doub
     for (const octomap::OcTreeKey& key : personKeys)
         markRay(origin, tree.keyToCoord(key));
     personKeys.clear();
+    ends.clear();
 
     std::size_t newlyKnown = 0;
     for (const std::int64_t i : marked) {
@@ -252,13 +250,9 @@ void ExplorationMap::setPeopleMapped(bool mapped) {
 
 void ExplorationMap::insertPointCloud(const Eigen::Vector3d& origin,
                                       const std::vector<Eigen::Vector3f>& points) {
-    impl_->cloud.clear();
-    impl_->cloud.reserve(points.size());
-    for (const auto& p : points) {
-        if (p.allFinite()) {
-            impl_->cloud.push_back(p.x(), p.y(), p.z());
-        }
-    }
+    for (const auto& p : points)
+        if (p.allFinite())
+            impl_->addEndPoint(octomap::point3d(p.x(), p.y(), p.z()));
     const octomap::point3d o(float(origin.x()), float(origin.y()), float(origin.z()));
     knownInBox_ += impl_->integrate(o, params_.maxRange);
     ++revision_;

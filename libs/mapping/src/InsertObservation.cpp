@@ -95,9 +95,9 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
 }
 
 /**
- * The discrete update reduces every end point to its voxel anyway, so feeding it one voxel
- * centre per run of neighbouring pixels (same voxel as the pixel to the left or above) gives
- * the same update with far fewer end points.
+ * The discrete update reduces every end point to its voxel anyway, so each voxel is added once
+ * as the pixels are read (most repeats, a pixel in the same voxel as the one to the left or
+ * above, skipped before even that lookup) and the update walks one ray per voxel.
  */
 void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan& obs,
                                        const FlatPose& robot,
@@ -107,7 +107,6 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
     const SensorFrame frame = sensorFrameInWorld(obs, robot);
     const PeopleBuckets onPeople(people);
     const Body body(robot, params_.bodyHalfExtents);
-    m.cloud.clear();
     m.rowAbove.assign(std::size_t(obs.rangeImage.cols()), kNoKey);
     forEachDepthRow(obs, frame, [&](int, const DepthRow& row) {
         std::uint64_t previous = kNoKey;  // the left neighbour's key, if it had a return
@@ -133,7 +132,7 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
             }
             const std::uint64_t packed = pack(key);
             if (packed != previous && packed != above)
-                m.cloud.push_back(m.tree.keyToCoord(key));
+                m.addEnd(key);
             previous = packed;
             above = packed;
         }
@@ -171,7 +170,7 @@ void ExplorationMap::addNoReturnRays(const mrpt::obs::CObservation3DRangeScan& o
                 continue;
             const Eigen::Vector3f dir = rays.ray(frame, v, u).normalized();
             const Eigen::Vector3f end = frame.origin + beyond * dir;
-            impl_->cloud.push_back(octomap::point3d(end.x(), end.y(), end.z()));
+            impl_->addEndPoint(octomap::point3d(end.x(), end.y(), end.z()));
         }
     }
 }

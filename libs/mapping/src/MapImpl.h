@@ -36,7 +36,9 @@ struct ExplorationMap::Impl {
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
 
-    octomap::Pointcloud cloud;         ///< scratch buffers reused between insertions
+    /// The frame's end cells, each once (marked kEndNow when added); scratch buffers reused
+    /// between insertions.
+    std::vector<octomap::OcTreeKey> ends;
     octomap::KeySet personKeys;        ///< cells of returns on people: cleared up to, not marked
     std::vector<std::int64_t> marked;  ///< dense cells with frame marks
     /// The frame's marks on cells outside the dense grid, one set per mark.
@@ -131,9 +133,22 @@ struct ExplorationMap::Impl {
     bool capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                              double radius) const;
 
+    /** Adds the cell of an end point to the frame's ends, unless it is there already. */
+    void addEnd(const octomap::OcTreeKey& key) {
+        if (mark(key, kEndNow))
+            ends.push_back(key);
+    }
+    /** addEnd of the cell containing p, if p is finite and inside the tree. */
+    template <class Point>
+    void addEndPoint(const Point& p) {
+        octomap::OcTreeKey key;
+        if (keyOf(p, key))
+            addEnd(key);
+    }
+
     /**
-     * Integrates a cloud (world frame) seen from origin. Returns the number of cells inside the
-     * box that went from Unknown to known.
+     * Integrates the frame's ends (world frame) seen from origin. Returns the number of cells
+     * inside the box that went from Unknown to known.
      */
     std::size_t integrate(const octomap::point3d& origin, double maxRange);
 
