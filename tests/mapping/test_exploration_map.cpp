@@ -166,35 +166,32 @@ TEST(ExplorationMap, KnownCellsMatchBruteForceLeafCount) {
     EXPECT_LE(map.coverage(), 1.0);
 }
 
-TEST(ExplorationMap, InsertionEqualsOctomapsOwnDiscreteUpdate) {
-    // OctoMap's insertPointCloud with discretize: the reference our walk of each ray (and the
-    // marks that replace its key sets) must reproduce, leaf for leaf and log-odds for log-odds,
-    // with rays that leave the dense grid and end points beyond the range.
+/**
+ * Inserts each scan into our map and into OctoMap's own insertPointCloud with discretize, the
+ * reference our walk of each ray (and the marks that replace its key sets) must reproduce, and
+ * expects the two trees equal leaf for leaf and log-odds for log-odds.
+ */
+struct Scan {
+    Eigen::Vector3d origin;
+    std::vector<Eigen::Vector3f> points;
+};
+void expectOctomapsDiscreteUpdate(const Aabb& box, const std::vector<Scan>& scans,
+                                  std::size_t minLeaves) {
     const MapParams params;
-    const Aabb box = makeBox({-1.3, -2.0, 0.0}, {4.1, 3.3, 2.5});
     ExplorationMap map(params, box);
     octomap::OcTree reference(params.resolution);
     reference.setProbHit(params.probHit);
     reference.setProbMiss(params.probMiss);
     reference.setClampingThresMin(params.clampMin);
     reference.setClampingThresMax(params.clampMax);
-    std::mt19937 rng(99);
-    std::uniform_real_distribution<double> u(0.0, 1.0), spread(-8.0, 8.0);
-    for (int c = 0; c < 30; ++c) {
-        const Eigen::Vector3d origin =
-            box.min + (box.max - box.min).cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
-        std::vector<Eigen::Vector3f> pts;
+    for (const Scan& scan : scans) {
         octomap::Pointcloud cloud;
-        for (int i = 0; i < 400; ++i) {
-            const Eigen::Vector3f p =
-                (origin + Eigen::Vector3d(spread(rng), spread(rng), 0.3 * spread(rng)))
-                    .cast<float>();
-            pts.push_back(p);
+        for (const Eigen::Vector3f& p : scan.points)
             cloud.push_back(p.x(), p.y(), p.z());
-        }
-        map.insertPointCloud(origin, pts);
-        const octomap::point3d o(float(origin.x()), float(origin.y()), float(origin.z()));
-        reference.insertPointCloud(cloud, o, params.maxRange, false, true);
+        map.insertPointCloud(scan.origin, scan.points);
+        const Eigen::Vector3f o = scan.origin.cast<float>();
+        reference.insertPointCloud(cloud, octomap::point3d(o.x(), o.y(), o.z()), params.maxRange,
+                                   false, true);
     }
     std::size_t leaves = 0;
     for (auto it = reference.begin_leafs(); it != reference.end_leafs(); ++it, ++leaves) {
@@ -203,7 +200,53 @@ TEST(ExplorationMap, InsertionEqualsOctomapsOwnDiscreteUpdate) {
         ASSERT_EQ(ours->getLogOdds(), it->getLogOdds()) << it.getCoordinate();
     }
     EXPECT_EQ(map.octree().getNumLeafNodes(), leaves);
-    EXPECT_GT(leaves, 5000u);
+    EXPECT_GT(leaves, minLeaves);
+}
+
+TEST(ExplorationMap, InsertionEqualsOctomapsOwnDiscreteUpdate) {
+    // Rays that leave the dense grid and end points beyond the range.
+    const Aabb box = makeBox({-1.3, -2.0, 0.0}, {4.1, 3.3, 2.5});
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<double> u(0.0, 1.0), spread(-8.0, 8.0);
+    std::vector<Scan> scans;
+    for (int c = 0; c < 30; ++c) {
+        Scan& scan = scans.emplace_back();
+        scan.origin =
+            box.min + (box.max - box.min).cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+        for (int i = 0; i < 400; ++i)
+            scan.points.push_back(
+                (scan.origin + Eigen::Vector3d(spread(rng), spread(rng), 0.3 * spread(rng)))
+                    .cast<float>());
+    }
+    expectOctomapsDiscreteUpdate(box, scans, 5000);
+}
+
+TEST(ExplorationMap, RaysCutAtTheRangeOnCellFacesAreOctomapsToo) {
+    // Rays that stay on the grid, cut at maxRange (5 m) where the cut lands on a cell face or
+    // edge: from origins on faces, along the axes and the diagonals, and to random points.
+    const Aabb box = makeBox({-8.0, -8.0, -6.0}, {8.0, 8.0, 6.0});
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::vector<Scan> scans;
+    for (const Eigen::Vector3d origin :
+         {Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(0.2, -0.4, 0.6),
+          Eigen::Vector3d(0.1, 0.3, -0.2)}) {
+        Scan& scan = scans.emplace_back();
+        scan.origin = origin;
+        for (int x = -1; x <= 1; ++x)
+            for (int y = -1; y <= 1; ++y)
+                for (int z = -1; z <= 1; ++z)
+                    if (x != 0 || y != 0 || z != 0)
+                        for (const double reach : {5.0, 5.4, 7.0})
+                            scan.points.push_back(
+                                (origin + reach * Eigen::Vector3d(x, y, z).normalized())
+                                    .cast<float>());
+        for (int i = 0; i < 2000; ++i)
+            scan.points.push_back(
+                (origin + 6.0 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized())
+                    .cast<float>());
+    }
+    expectOctomapsDiscreteUpdate(box, scans, 3000);
 }
 
 TEST(ExplorationMap, OctreeStaysPrunedAndAgreesWithDenseGrid) {

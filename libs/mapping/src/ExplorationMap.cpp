@@ -113,6 +113,17 @@ bool ExplorationMap::Impl::markOutside(const octomap::OcTreeKey& key, std::uint8
     return outside.insert(key).second;
 }
 
+bool ExplorationMap::Impl::walkStaysOnGrid(const octomap::OcTreeKey& from,
+                                           const octomap::OcTreeKey& to) const {
+    for (std::size_t a = 0; a < 3; ++a) {
+        const int lo = std::min(int(from[a]), int(to[a])) - 1 - int(gridMin[a]);
+        const int hi = std::max(int(from[a]), int(to[a])) + 1 - int(gridMin[a]);
+        if (lo < 0 || hi >= dims[a])
+            return false;
+    }
+    return true;
+}
+
 /**
  * Marks free the cells OctoMap's computeRayKeys lists for origin-end (the traversal of Amanatides
  * and Woo with OctoMap's own arithmetic, so the very same cells: the first, then each one
@@ -142,6 +153,31 @@ void ExplorationMap::Impl::markRay(const octomap::point3d& origin, const octomap
     // The walk with its state in registers: one branch per axis instead of indexed arrays.
     const std::array<std::int64_t, 3> stride{1, dims[0], std::int64_t(dims[0]) * dims[1]};
     double tx = tNext[0], ty = tNext[1], tz = tNext[2];
+    if (walkStaysOnGrid(key, last)) {
+        const std::int64_t sx = step[0] * stride[0], sy = step[1] * stride[1],
+                           sz = step[2] * stride[2];
+        const std::int64_t lastIndex = gridIndex(last);
+        for (std::int64_t index = gridIndex(key);;) {
+            markCell(index, kFreeNow);
+            if (tx < ty) {
+                if (tx < tz) {
+                    tx += tDelta[0];
+                    index += sx;
+                } else {
+                    tz += tDelta[2];
+                    index += sz;
+                }
+            } else if (ty < tz) {
+                ty += tDelta[1];
+                index += sy;
+            } else {
+                tz += tDelta[2];
+                index += sz;
+            }
+            if (index == lastIndex || std::min(std::min(tx, ty), tz) > length)
+                return;
+        }
+    }
     std::int64_t index = gridIndex(key);  // stepped along while the walk stays on the grid
     const auto stepAxis = [&](std::size_t a, double& t) {
         key[a] = octomap::key_type(key[a] + step[a]);

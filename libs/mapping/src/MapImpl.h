@@ -166,6 +166,12 @@ struct ExplorationMap::Impl {
         return true;
     }
     void markRay(const octomap::point3d& origin, const octomap::point3d& end);
+    /**
+     * Whether a ray walk from cell `from` to cell `to` stays on the dense grid: their box, grown
+     * by the one cell a walk may step past its end's cell on an axis (rounding, where the
+     * segment's end lies on a cell face), lies on it.
+     */
+    bool walkStaysOnGrid(const octomap::OcTreeKey& from, const octomap::OcTreeKey& to) const;
     /** The map update of one marked cell; true when it went from unknown to known in the box. */
     bool applyUpdate(const octomap::OcTreeKey& key, bool hit);
 };
