@@ -78,25 +78,34 @@ void setTriangles(RTCGeometry geom, const TriangleSoup& soup) {
             idx[3 * i + k] = static_cast<unsigned>(soup.triangles[i][k]);
 }
 
+/** The fields of a ray packet that stay the same for every ray of a frame (Embree writes only
+ * tfar and the hit). */
 template <typename Packet, int K>
-void fillPacket(Packet& p, int* valid, const Eigen::Vector3f& o, const Eigen::Vector3f* dirs,
-                std::size_t count, float maxRange) {
+void initPacket(Packet& p, const Eigen::Vector3f& o) {
     for (int k = 0; k < K; ++k) {
-        const bool on = static_cast<std::size_t>(k) < count;
-        valid[k] = on ? -1 : 0;
-        const Eigen::Vector3f& d = on ? dirs[k] : dirs[0];
         p.ray.org_x[k] = o.x();
         p.ray.org_y[k] = o.y();
         p.ray.org_z[k] = o.z();
-        p.ray.dir_x[k] = d.x();
-        p.ray.dir_y[k] = d.y();
-        p.ray.dir_z[k] = d.z();
         p.ray.tnear[k] = 0.0f;
-        p.ray.tfar[k] = maxRange;
         p.ray.time[k] = 0.0f;
         p.ray.mask[k] = ~0u;
         p.ray.id[k] = static_cast<unsigned>(k);
         p.ray.flags[k] = 0;
+    }
+}
+
+/** The fields of a packet initPacket set up that each cast sets anew. */
+template <typename Packet, int K>
+void fillPacket(Packet& p, int* valid, const Eigen::Vector3f* dirs, std::size_t count,
+                float maxRange) {
+    for (int k = 0; k < K; ++k) {
+        const bool on = static_cast<std::size_t>(k) < count;
+        valid[k] = on ? -1 : 0;
+        const Eigen::Vector3f& d = on ? dirs[k] : dirs[0];
+        p.ray.dir_x[k] = d.x();
+        p.ray.dir_y[k] = d.y();
+        p.ray.dir_z[k] = d.z();
+        p.ray.tfar[k] = maxRange;
         p.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         p.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -249,9 +258,10 @@ struct RayCaster::Impl {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        initPacket<Packet, K>(packet, origin);
         for (std::size_t base = 0; base < dirs.size(); base += K) {
             const std::size_t count = std::min<std::size_t>(K, dirs.size() - base);
-            fillPacket<Packet, K>(packet, valid, origin, dirs.data() + base, count, maxRange);
+            fillPacket<Packet, K>(packet, valid, dirs.data() + base, count, maxRange);
             intersect(valid, scene, &context, &packet);
             for (std::size_t k = 0; k < count; ++k)
                 out[base + k] =
