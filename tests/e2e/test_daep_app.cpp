@@ -51,10 +51,10 @@ int nodesOfACutLocalTree(const std::string& planRow) {
     if (planRow.find("deadline: local: ") == std::string::npos)
         return 0;
     const std::size_t end = planRow.rfind(" nodes");
-    const std::size_t start = planRow.rfind(' ', end - 1);
-    return end == std::string::npos || start == std::string::npos
-               ? 0
-               : std::stoi(planRow.substr(start + 1, end - start - 1));
+    if (end == std::string::npos)
+        return 0;
+    const std::size_t start = planRow.rfind(' ', end - 1);  // after "deadline: ", so found
+    return std::stoi(planRow.substr(start + 1, end - start - 1));
 }
 
 }  // namespace

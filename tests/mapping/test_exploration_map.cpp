@@ -166,15 +166,17 @@ TEST(ExplorationMap, KnownCellsMatchBruteForceLeafCount) {
     EXPECT_LE(map.coverage(), 1.0);
 }
 
+/** End points seen from one origin. */
+struct Scan {
+    Eigen::Vector3d origin;
+    std::vector<Eigen::Vector3f> points;
+};
+
 /**
  * Inserts each scan into our map and into OctoMap's own insertPointCloud with discretize, the
  * reference our walk of each ray (and the marks that replace its key sets) must reproduce, and
  * expects the two trees equal leaf for leaf and log-odds for log-odds.
  */
-struct Scan {
-    Eigen::Vector3d origin;
-    std::vector<Eigen::Vector3f> points;
-};
 void expectOctomapsDiscreteUpdate(const Aabb& box, const std::vector<Scan>& scans,
                                   std::size_t minLeaves) {
     const MapParams params;
@@ -228,7 +230,7 @@ TEST(ExplorationMap, RaysCutAtTheRangeOnCellFacesAreOctomapsToo) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     std::vector<Scan> scans;
-    for (const Eigen::Vector3d origin :
+    for (const Eigen::Vector3d& origin :
          {Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(0.2, -0.4, 0.6),
           Eigen::Vector3d(0.1, 0.3, -0.2)}) {
         Scan& scan = scans.emplace_back();

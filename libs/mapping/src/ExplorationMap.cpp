@@ -151,55 +151,48 @@ void ExplorationMap::Impl::markRay(const octomap::point3d& origin, const octomap
         tDelta[a] = res / std::fabs(dir(unsigned(a)));
     }
     // The walk with its state in registers: one branch per axis instead of indexed arrays.
-    const std::array<std::int64_t, 3> stride{1, dims[0], std::int64_t(dims[0]) * dims[1]};
     double tx = tNext[0], ty = tNext[1], tz = tNext[2];
-    if (walkStaysOnGrid(key, last)) {
-        const std::int64_t sx = step[0] * stride[0], sy = step[1] * stride[1],
-                           sz = step[2] * stride[2];
-        const std::int64_t lastIndex = gridIndex(last);
-        for (std::int64_t index = gridIndex(key);;) {
-            markCell(index, kFreeNow);
+    const auto walk = [&](const auto& markHere, const auto& stepAxis, const auto& atLast) {
+        for (;;) {
+            markHere();
             if (tx < ty) {
-                if (tx < tz) {
-                    tx += tDelta[0];
-                    index += sx;
-                } else {
-                    tz += tDelta[2];
-                    index += sz;
-                }
+                if (tx < tz)
+                    stepAxis(0, tx);
+                else
+                    stepAxis(2, tz);
             } else if (ty < tz) {
-                ty += tDelta[1];
-                index += sy;
+                stepAxis(1, ty);
             } else {
-                tz += tDelta[2];
-                index += sz;
+                stepAxis(2, tz);
             }
-            if (index == lastIndex || std::min(std::min(tx, ty), tz) > length)
+            if (atLast() || std::min(std::min(tx, ty), tz) > length)
                 return;
         }
-    }
-    std::int64_t index = gridIndex(key);  // stepped along while the walk stays on the grid
-    const auto stepAxis = [&](std::size_t a, double& t) {
-        key[a] = octomap::key_type(key[a] + step[a]);
-        t += tDelta[a];
-        const int c = int(key[a]) - int(gridMin[a]);
-        index = index >= 0 && c >= 0 && c < dims[a] ? index + step[a] * stride[a] : gridIndex(key);
     };
-    for (;;) {
-        index >= 0 ? markCell(index, kFreeNow) : markOutside(key, kFreeNow);
-        if (tx < ty) {
-            if (tx < tz)
-                stepAxis(0, tx);
-            else
-                stepAxis(2, tz);
-        } else if (ty < tz) {
-            stepAxis(1, ty);
-        } else {
-            stepAxis(2, tz);
-        }
-        if (key == last || std::min(std::min(tx, ty), tz) > length)
-            return;
+    const std::array<std::int64_t, 3> stride{1, dims[0], std::int64_t(dims[0]) * dims[1]};
+    std::int64_t index = gridIndex(key);  // stepped along while the walk stays on the grid
+    if (walkStaysOnGrid(key, last)) {
+        // No key, no bounds: the dense index alone.
+        const std::array<std::int64_t, 3> indexStep{step[0] * stride[0], step[1] * stride[1],
+                                                    step[2] * stride[2]};
+        const std::int64_t lastIndex = gridIndex(last);
+        walk([&] { markCell(index, kFreeNow); },
+             [&](std::size_t a, double& t) {
+                 t += tDelta[a];
+                 index += indexStep[a];
+             },
+             [&] { return index == lastIndex; });
+        return;
     }
+    walk([&] { index >= 0 ? markCell(index, kFreeNow) : markOutside(key, kFreeNow); },
+         [&](std::size_t a, double& t) {
+             key[a] = octomap::key_type(key[a] + step[a]);
+             t += tDelta[a];
+             const int c = int(key[a]) - int(gridMin[a]);
+             index =
+                 index >= 0 && c >= 0 && c < dims[a] ? index + step[a] * stride[a] : gridIndex(key);
+         },
+         [&] { return key == last; });
 }
 
 bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) {

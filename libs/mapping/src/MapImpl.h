@@ -139,8 +139,7 @@ struct ExplorationMap::Impl {
             ends.push_back(key);
     }
     /** addEnd of the cell containing p, if p is finite and inside the tree. */
-    template <class Point>
-    void addEndPoint(const Point& p) {
+    void addEndPoint(const octomap::point3d& p) {
         octomap::OcTreeKey key;
         if (keyOf(p, key))
             addEnd(key);
