@@ -113,6 +113,26 @@ TEST_F(Walkway, SomeoneSeenWalksOnFromWhereTheCameraLeftThem) {
     EXPECT_LE(excess({5.0, 9.5}, 11.2, 13.2), 0.0);  // too far to walk before 13.2 s
 }
 
+TEST_F(Walkway, SomeoneSeenWalksOnAcrossACellTheCameraNeverSawAnyoneIn) {
+    // The lane x = 5.5 with its cell y = 5.5 quiet: nobody was seen there, people were seen
+    // on both sides. A walker left at y = 3.5 crosses it as any other cell of the lane.
+    DynamicFrequencyMap gap(box, 1.0);
+    for (int y = 0; y < 10; ++y)
+        if (y != 5)
+            gap.add({5.5, y + 0.5});
+    watch = BlindWatch(gap, params);
+    watch.see({{5.5, 0.2, 1.0}, M_PI / 2}, 0.2, 10.0, gap);
+    watch.see({{5.5, 0.2, 1.0}, M_PI / 2}, 0.2, 11.0, gap, {{5.5, 3.5}});
+    watch.see({{0.5, 5.5, 1.0}, M_PI}, 0.2, 11.2, gap);
+    EXPECT_DOUBLE_EQ(watch.unseenFrom({5.5, 5.5}), 15.0);
+    EXPECT_DOUBLE_EQ(watch.unseenFrom({5.5, 6.5}), 17.0);
+    EXPECT_GT(watch.worstThreat(gap, {5.0, 6.5}, 16.0, 18.0, keepOut).excess, 0.0);
+    // Beside the lane, quiet cells with a busy cell on one side only are no walkway: a stop
+    // 2 m off the lane is just out of a walker's reach in 2 s (1 m a walkway at x = 4.5 gives).
+    watch = BlindWatch(gap, params);
+    EXPECT_NEAR(watch.worstThreat(gap, {3.5, 2.5}, 10.0, 12.0, keepOut).excess, 0.0, 1e-12);
+}
+
 TEST_F(Walkway, QuietCellsAreNoWalkway) {
     DynamicFrequencyMap mixed(box, 1.0);
     for (int k = 0; k < 10; ++k)

@@ -81,26 +81,42 @@ bool BlindWatch::busy(const DynamicFrequencyMap& dfm, std::size_t i) const {
     return dfm.maxCount() > 0 && dfm.value(i) >= params_.busyThreshold;
 }
 
+bool BlindWatch::walkway(const DynamicFrequencyMap& dfm, int ix, int iy) const {
+    const auto busyAt = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < grid_.nx && y < grid_.ny &&
+               busy(dfm, static_cast<std::size_t>(y * grid_.nx + x));
+    };
+    if (busyAt(ix, iy))
+        return true;
+    // A quiet cell between two busy ones: people walked across it, only not while the camera
+    // looked (the frequency map counts people where they were seen).
+    constexpr int kHalfLines[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+    for (const auto& d : kHalfLines)
+        if (busyAt(ix - d[0], iy - d[1]) && busyAt(ix + d[0], iy + d[1]))
+            return true;
+    return false;
+}
+
 void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
     const int nx = grid_.nx, ny = grid_.ny;
-    std::vector<char> walkway(grid_.size());
-    for (std::size_t i = 0; i < walkway.size(); ++i) {
-        walkway[i] = busy(dfm, i);
+    std::vector<char> onWalkway(grid_.size());
+    for (std::size_t i = 0; i < onWalkway.size(); ++i) {
+        onWalkway[i] = walkway(dfm, static_cast<int>(i) % nx, static_cast<int>(i) / nx);
         // Someone seen in a cell at its last look may still be there once the camera looks away.
         if (lastSeen_[i] < t && personSeen_[i] > -kInf && personSeen_[i] >= lastSeen_[i])
             leftAt_[i] = std::min(leftAt_[i], lastSeen_[i]);
-        if (walkway[i])
+        if (onWalkway[i])
             unseenFrom_[i] = std::min(unseenFrom_[i], leftAt_[i]);
     }
     // Off the walkways only the people just seen walk, from where they were.
-    const auto from = [&](std::size_t j) { return walkway[j] ? unseenFrom_[j] : leftAt_[j]; };
+    const auto from = [&](std::size_t j) { return onWalkway[j] ? unseenFrom_[j] : leftAt_[j]; };
     // Two chamfer sweeps along the walkways: from the cells before each cell in raster order,
     // then from those after it.
     const double side = walkTime(grid_.cellSize);
     const double diagonal = walkTime(std::sqrt(2.0) * grid_.cellSize);
     const auto relax = [&](int ix, int iy, const int(&steps)[4][2]) {
         const auto i = static_cast<std::size_t>(iy * nx + ix);
-        if (lastSeen_[i] == t || !walkway[i])
+        if (lastSeen_[i] == t || !onWalkway[i])
             return;
         double earliest = kInf;
         for (const auto& s : steps) {
@@ -146,7 +162,7 @@ BlindThreat BlindWatch::worstThreat(const DynamicFrequencyMap& dfm, const Eigen:
             const Eigen::Vector2d c = grid_.center(ix, iy);
             const double distance = (c - p).norm();
             const double from = std::max(unseenFrom_[i], now);
-            if (distance > reachMax || from >= until || !busy(dfm, i))
+            if (distance > reachMax || from >= until || !walkway(dfm, ix, iy))
                 continue;
             const double excess = keepOut + params_.walkSpeed * (until - from) - distance;
             if (excess > worst.excess)

@@ -29,7 +29,8 @@ struct BlindThreat {
 
 /**
  * Where a person the camera does not see may be, over the frequency map's grid. People walk
- * only where people have walked before (walkways: busy cells of the frequency map), at most
+ * only where people have walked before (walkways: busy cells of the frequency map, and single
+ * quiet cells between two busy ones, which the camera missed them crossing), at most
  * walkSpeed. A cell the camera looks at holds nobody unseen; one it does not may hold someone
  * from the earliest time a person could have walked in: from a neighbouring cell that may hold
  * one, from where a person was last seen, or at once if nobody has ever looked. So a walkway
@@ -70,6 +71,8 @@ private:
     void markLeft(const Eigen::Vector2d& person, double t);
     void spread(const DynamicFrequencyMap& dfm, double t);
     bool busy(const DynamicFrequencyMap& dfm, std::size_t i) const;
+    /** A busy cell, or a quiet one that closes a gap of one cell between two busy ones. */
+    bool walkway(const DynamicFrequencyMap& dfm, int ix, int iy) const;
     double walkTime(double distance) const;
     /** A per-cell time at xy's cell (-infinity outside the grid). */
     double atCell(const std::vector<double>& times, const Eigen::Vector2d& xy) const;
