@@ -83,8 +83,7 @@ bool BlindWatch::busy(const DynamicFrequencyMap& dfm, std::size_t i) const {
 
 bool BlindWatch::walkway(const DynamicFrequencyMap& dfm, int ix, int iy) const {
     const auto busyAt = [&](int x, int y) {
-        return x >= 0 && y >= 0 && x < grid_.nx && y < grid_.ny &&
-               busy(dfm, static_cast<std::size_t>(y * grid_.nx + x));
+        return grid_.contains(x, y) && busy(dfm, static_cast<std::size_t>(y * grid_.nx + x));
     };
     if (busyAt(ix, iy))
         return true;
@@ -121,7 +120,7 @@ void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
         double earliest = kInf;
         for (const auto& s : steps) {
             const int jx = ix + s[0], jy = iy + s[1];
-            if (jx < 0 || jy < 0 || jx >= nx || jy >= ny)
+            if (!grid_.contains(jx, jy))
                 continue;
             const double walk = s[0] != 0 && s[1] != 0 ? diagonal : side;
             earliest = std::min(earliest, from(static_cast<std::size_t>(jy * nx + jx)) + walk);

@@ -17,7 +17,7 @@ int XyGrid::index(const Eigen::Vector2d& xy) const {
     const Eigen::Vector2d local = (xy - origin) / cellSize;
     const int ix = static_cast<int>(std::floor(local.x()));
     const int iy = static_cast<int>(std::floor(local.y()));
-    if (ix < 0 || iy < 0 || ix >= nx || iy >= ny)
+    if (!contains(ix, iy))
         return -1;
     return iy * nx + ix;
 }

@@ -15,6 +15,8 @@ struct XyGrid {
 
     /** The cell holding xy, or -1 outside the grid. */
     int index(const Eigen::Vector2d& xy) const;
+    /** Whether cell (ix, iy) lies on the grid. */
+    bool contains(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < nx && iy < ny; }
     Eigen::Vector2d center(int ix, int iy) const;
     std::size_t size() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny); }
 
