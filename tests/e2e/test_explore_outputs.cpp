@@ -81,3 +81,61 @@ TEST(ExploreOutputs, BadSetValueNamesTheSetNotTheConfigFile) {
     EXPECT_NE(r.err.find(": [map] max_range: 0 must be > 0"), std::string::npos) << r.err;
     fs::remove_all(dir);
 }
+
+TEST(ExploreOutputs, RenderSceneDrawsTheSamePngsARunWouldHave) {
+    const auto dir = freshDir("explore_render_scene");
+    const std::string common = kTinyIni +
+                               " --quiet --set experiment.max_time_s=5 --set output.png_width=320 "
+                               "--set output.png_height=240 ";
+    const auto rendered = runExplore(common + "--out " + (dir / "rendered").string(), dir);
+    ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+    if (!fs::exists(dir / "rendered" / "scene_top.png"))
+        GTEST_SKIP() << "no EGL/OpenGL here: the run skipped its PNGs (" << rendered.err << ")";
+    const auto later = dir / "later";
+    ASSERT_EQ(
+        runExplore(common + "--set output.render_png=false --out " + later.string(), dir).exitCode,
+        0);
+    ASSERT_TRUE(fs::exists(later / "scene.3Dscene"));
+    ASSERT_FALSE(fs::exists(later / "scene_top.png"));
+    const auto r = runExplore("--render-scene " + later.string(), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* png : {"scene_perspective.png", "scene_top.png"}) {
+        ASSERT_TRUE(fs::exists(later / png)) << png;
+        EXPECT_EQ(readText(later / png), readText(dir / "rendered" / png)) << png;
+    }
+    fs::remove_all(dir);
+}
+
+TEST(ExploreOutputs, RenderSceneNamesTheSceneItCannotRead) {
+    const auto dir = freshDir("explore_render_bad_scene");
+    const auto run = dir / "run";
+    ASSERT_EQ(runExplore(kTinyIni +
+                             " --quiet --set experiment.max_time_s=3 "
+                             "--set output.render_png=false --out " +
+                             run.string(),
+                         dir)
+                  .exitCode,
+              0);
+    const std::string scene = readText(run / "scene.3Dscene");
+    struct Case {
+        std::string content, message;
+    };
+    for (const Case& c :
+         {Case{"", "does not exist"}, Case{"not a scene\n", "cannot read the scene"},
+          Case{scene.substr(0, scene.size() / 2), "cannot read the scene"}}) {
+        fs::remove(run / "scene.3Dscene");
+        if (!c.content.empty())
+            std::ofstream(run / "scene.3Dscene", std::ios::binary) << c.content;
+        const auto r = runExplore("--render-scene " + run.string(), dir);
+        EXPECT_EQ(r.exitCode, 1) << c.message;
+        EXPECT_NE(r.err.find((run / "scene.3Dscene").string()), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+        EXPECT_FALSE(fs::exists(run / "scene_top.png"));
+    }
+    const auto r = runExplore("--render-scene " + run.string() + " " + kTinyIni, dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("--render-scene takes the run's folder alone"), std::string::npos)
+        << r.err;
+    fs::remove_all(dir);
+}

@@ -7,6 +7,8 @@
 #include <iomanip>
 #include <iostream>
 
+#include "Outputs.h"
+#include "SceneExport.h"
 #include "daep/common/AppMain.h"
 #include "daep/common/CommandLine.h"
 #include "daep/common/Error.h"
@@ -118,12 +120,15 @@ void removeEarlierOutputs(const std::string& dir) {
 
 std::string ExploreApp::usage() {
     return "usage: daep-explore CONFIG.ini [--set section.key=value ...] [--out DIR] [--quiet]\n"
+           "       daep-explore --render-scene RUN_DIR [--set section.key=value ...]\n"
            "       daep-explore --list-worlds | --list-planners | --help\n"
            "\n"
            "Runs one exploration mission in the built-in simulator and writes summary.json,\n"
            "timeseries.csv, trajectory.csv, plans.csv, collisions.csv, timing.json, config.ini\n"
            "and map.bt to DIR (default: out/<CONFIG name>). With experiment.source=rawlog it\n"
-           "replays experiment.rawlog_file instead: maps it and runs the planner on it.\n";
+           "replays experiment.rawlog_file instead: maps it and runs the planner on it.\n"
+           "--render-scene renders RUN_DIR/scene.3Dscene of a run made with\n"
+           "output.render_png = false to its two PNGs, at the size in RUN_DIR/config.ini.\n";
 }
 
 bool ExploreApp::initialize(int argc, const char* const* argv) {
@@ -133,6 +138,7 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
     CommandLine cli("daep-explore", usage());
     cli.repeated("--set", overrides_)
         .option("--out", outputDir_)
+        .option("--render-scene", renderSceneDir_)
         .flag("-q,--quiet", quiet_)
         .flag("--list-worlds", listWorlds)
         .flag("--list-planners", listPlanners)
@@ -145,6 +151,13 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
         std::cout << joined(planning::plannerNames()) << "\n";
     if (listWorlds || listPlanners)
         return false;
+    if (!renderSceneDir_.empty()) {
+        if (!config.empty() || !outputDir_.empty())
+            throw InputError(
+                "daep-explore: --render-scene takes the run's folder alone, no "
+                "config file or --out");
+        return true;
+    }
     if (config.empty())
         throw InputError("daep-explore: no config file given (see daep-explore --help)");
     configPath_ = config.front();
@@ -153,7 +166,22 @@ bool ExploreApp::initialize(int argc, const char* const* argv) {
     return true;
 }
 
+int ExploreApp::renderScene() const {
+    return runApp([&] {
+        const ExperimentConfig config =
+            ExperimentConfig::fromFile(renderSceneDir_ + "/config.ini", overrides_);
+        const OutputParams output = loadOutputParams(config.config());
+        renderSceneFile(renderSceneDir_, output.pngWidth, output.pngHeight);
+        if (!quiet_)
+            std::cout << "wrote " << renderSceneDir_ << "/scene_perspective.png and "
+                      << renderSceneDir_ << "/scene_top.png\n";
+        return 0;
+    });
+}
+
 int ExploreApp::run() {
+    if (!renderSceneDir_.empty())
+        return renderScene();
     return runApp([&] {
         ExperimentConfig config = ExperimentConfig::fromFile(configPath_, overrides_);
         config.setInvocation(invocation_);

@@ -2,6 +2,7 @@
 
 #include <mrpt/img/CImage.h>
 #include <mrpt/img/color_maps.h>
+#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/opengl/CBox.h>
 #include <mrpt/opengl/CFBORender.h>
@@ -22,6 +23,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "daep/common/Error.h"
 #include "daep/common/Sanitizers.h"
 #include "daep/eval/ImageOverlay.h"
 #include "daep/mapping/ExplorationMap.h"
@@ -357,6 +359,33 @@ void SceneExporter::write(const SceneContent& content) {
         (log_ ? *log_ : std::cerr) << "warning: cannot render the scene to PNG (no EGL/OpenGL?), "
                                       "skipping PNGs: "
                                    << what << std::endl;
+    }
+}
+
+void renderSceneFile(const std::string& directory, int width, int height) {
+    const std::string path = directory + "/scene.3Dscene";
+    if (!std::filesystem::is_regular_file(path))
+        throw InputError("no scene to render: " + path + " does not exist");
+    COpenGLScene scene;
+    try {
+        mrpt::io::CFileGZInputStream in(path);
+        mrpt::serialization::archiveFrom(in) >> scene;
+    } catch (const std::exception& e) {
+        throw InputError("cannot read the scene " + path + ": " + oneLine(e.what()));
+    }
+    const auto frame = std::dynamic_pointer_cast<gl::CBox>(scene.getByName("box"));
+    if (!frame || !scene.getByClass<gl::COctoMapVoxels>())
+        throw InputError(path + ": not a daep-explore scene (no exploration box or voxels)");
+    TPoint3D low, high;
+    frame->getBoxCorners(low, high);
+    const Aabb box{{low.x, low.y, low.z}, {high.x, high.y, high.z}};
+    try {
+        leakCheckBeforeDynamicTls();
+        gl::CFBORender renderer(width, height);
+        renderPngs(renderer, scene, box, directory, width, height);
+    } catch (const std::exception& e) {
+        throw std::runtime_error("cannot render " + path +
+                                 " (no EGL/OpenGL?): " + oneLine(e.what()));
     }
 }
 

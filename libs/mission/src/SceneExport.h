@@ -24,6 +24,14 @@ namespace daep::mission {
 std::vector<world::PersonState> tracksAsPeople(
     double t, const std::vector<perception::PersonForecast>& tracks);
 
+/**
+ * Renders DIR/scene.3Dscene, as SceneExporter wrote it, to DIR/scene_perspective.png and
+ * DIR/scene_top.png: the PNGs of a run made with render_png = false. Throws InputError naming
+ * the file when it is missing, unreadable or not such a scene, std::runtime_error when it
+ * cannot be rendered (no EGL/OpenGL).
+ */
+void renderSceneFile(const std::string& directory, int width, int height);
+
 /** What one scene shows; the pointers must outlive SceneExporter::write(). */
 struct SceneContent {
     const mapping::ExplorationMap* map = nullptr;

@@ -24,9 +24,12 @@ public:
     static std::string usage();
 
 private:
+    int renderScene() const;
+
     std::string configPath_;
     std::vector<std::string> overrides_;
     std::string outputDir_;
+    std::string renderSceneDir_;  ///< --render-scene: only render that run's scene to PNG
     bool quiet_ = false;
     RunProvenance invocation_;
     eval::RunSummary summary_;
