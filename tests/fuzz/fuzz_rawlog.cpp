@@ -17,9 +17,13 @@
 // CActionCollection (now unpacked by our reader), before it meets the end of the file (both
 // found by this target). ASan's
 // operator new aborts instead of throwing, and a release build may exhaust memory. Here, while
-// an input is read, allocations beyond a budget far above what a fuzz input's objects need
-// throw std::bad_alloc (the reader turns it into an InputError), so fuzzing goes on to our code.
+// an input is read, large allocations beyond a budget far above what a fuzz input's objects
+// need throw std::bad_alloc (the reader turns it into an InputError), so fuzzing goes on to our
+// code. Small ones are always granted: a corrupt size asks for megabytes or more, while the
+// small blocks of MRPT's exception text (its call stack) must not fail once a large read has
+// spent the budget, where a throw terminates.
 constexpr std::size_t kAllocationBudget = std::size_t(64) << 20;
+constexpr std::size_t kAlwaysGranted = std::size_t(1) << 20;
 bool readingInput = false;
 /**
  * Bytes allocated while reading the input and not freed yet. Counting what is live, not all
@@ -30,7 +34,9 @@ std::size_t liveForInput = 0;
 
 // Every unaligned form is replaced, so that each allocation is freed by its own kind.
 void* boundedAllocation(std::size_t size) noexcept {
-    if (readingInput && size > kAllocationBudget - liveForInput) {
+    const bool overBudget =
+        liveForInput >= kAllocationBudget || size > kAllocationBudget - liveForInput;
+    if (readingInput && size >= kAlwaysGranted && overBudget) {
         readingInput = false;  // one refusal unwinds MRPT; the error message may allocate
         return nullptr;
     }
