@@ -85,6 +85,7 @@ TEST_F(ComponentDefaults, Detector) {
                 {"merge_distance", d.mergeDistance, i.mergeDistance},
                 {"sigma_along", d.sigmaAlong, i.sigmaAlong},
                 {"sigma_across", d.sigmaAcross, i.sigmaAcross},
+                {"side_sigma_across", d.sideSigmaAcross, i.sideSigmaAcross},
                 {"imprint_keep_s", d.imprintKeep, i.imprintKeep},
                 {"min_fresh_fraction", d.minFreshFraction, i.minFreshFraction},
                 {"see_through_depth", d.seeThroughDepth, i.seeThroughDepth},

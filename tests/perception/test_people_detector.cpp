@@ -129,6 +129,50 @@ TEST(PeopleDetector, FindsAPersonInKnownFreeSpaceAndNotTheStaticBox) {
     const Eigen::Vector2d view = (Eigen::Vector2d(0.5, -0.5) - at.head<2>()).normalized();
     const Eigen::Vector2d across(-view.y(), view.x());
     EXPECT_GT(view.dot(found[0].covariance * view), across.dot(found[0].covariance * across));
+    EXPECT_FALSE(detector.lastDetections()[0].cutBySide);
+    EXPECT_NEAR(across.dot(found[0].covariance * across), 0.1 * 0.1, 1e-3);
+}
+
+TEST(PeopleDetector, APersonTheImageSideCutsIsPlacedBeyondThePartSeen) {
+    Scene s;
+    const Eigen::Vector3d at(-3, 0, 1.2);
+    s.mapEmptyRoom(at);
+    perception::DetectorParams params;
+    PeopleDetector detector{params};
+    const Eigen::Vector2d person(0.5, -0.5);
+    const Eigen::Vector2d view = (person - at.head<2>()).normalized();
+    const double bearing = std::atan2(view.y(), view.x());
+    const double halfFov = 0.5 * s.camera.params().hfovRad;
+    // The right edge of the image runs through the body, then the left one: a third of it seen.
+    for (const double yaw : {bearing + halfFov + 0.05, bearing - halfFov - 0.05}) {
+        const FlatPose pose{at, yaw};
+        s.render(pose, 10.0, {standingAt(person.x(), person.y())});
+        const auto found = detector.detect(s.obs, pose, s.map);
+        ASSERT_EQ(found.size(), 1u) << "yaw " << yaw;
+        const perception::PersonDetection& d = detector.lastDetections()[0];
+        EXPECT_TRUE(d.cutBySide);
+        const Eigen::Vector2d viewed = (d.surfaceCentroid.head<2>() - at.head<2>()).normalized();
+        const Eigen::Vector2d side(-viewed.y(), viewed.x());
+        // The part seen alone would put the person inside it, off by a good part of a body.
+        const Eigen::Vector2d seenOnly = d.surfaceCentroid.head<2>() + params.centreOffset * viewed;
+        EXPECT_GT((seenOnly - person).norm(), 0.25) << "yaw " << yaw;
+        EXPECT_LT((found[0].position - person).norm(), 0.15) << "yaw " << yaw;
+        EXPECT_NEAR(side.dot(found[0].covariance * side),
+                    params.sideSigmaAcross * params.sideSigmaAcross, 1e-3);
+        EXPECT_NEAR(viewed.dot(found[0].covariance * viewed), params.sigmaAlong * params.sigmaAlong,
+                    1e-3);
+    }
+    // Seen whole again, the person is placed as before: at the part seen, tightly across.
+    const FlatPose ahead{at, bearing};
+    s.render(ahead, 11.0, {standingAt(person.x(), person.y())});
+    const auto found = detector.detect(s.obs, ahead, s.map);
+    ASSERT_EQ(found.size(), 1u);
+    const perception::PersonDetection& d = detector.lastDetections()[0];
+    EXPECT_FALSE(d.cutBySide);
+    EXPECT_LT((found[0].position - person).norm(), 0.2);
+    const Eigen::Vector2d across(-view.y(), view.x());
+    EXPECT_NEAR(across.dot(found[0].covariance * across), params.sigmaAcross * params.sigmaAcross,
+                1e-3);
 }
 
 TEST(PeopleDetector, FindsNothingInAStaticSceneTheMapExplains) {

@@ -25,8 +25,9 @@ using mapping::sensorFrameInWorld;
 
 void validate(const DetectorParams& p) {
     if (!(p.maxRange > 0) || !(p.ceilingHeight > p.floorHeight) || p.morphKernel < 1 ||
-        p.pixelStride < 1 || !(p.sigmaAlong > 0) || !(p.sigmaAcross > 0) || p.imprintKeep < 0 ||
-        !(p.depthJump > 0) || p.minEvidenceFraction < 0 || p.minEvidenceFraction > 1)
+        p.pixelStride < 1 || !(p.sigmaAlong > 0) || !(p.sigmaAcross > 0) ||
+        !(p.sideSigmaAcross > 0) || p.imprintKeep < 0 || !(p.depthJump > 0) ||
+        p.minEvidenceFraction < 0 || p.minEvidenceFraction > 1)
         throw std::invalid_argument("PeopleDetector: invalid parameters");
 }
 
@@ -348,6 +349,37 @@ private:
                g.zMax - g.zMin >= p.minVerticalExtent && extentsFitPerson(g);
     }
 
+    /** Which of the image's side edges cut the group: the body goes on beyond them, unseen. */
+    struct SideCut {
+        bool left = false, right = false;
+        bool any() const { return left || right; }
+    };
+    SideCut sideCut(const Group& g) const {
+        SideCut cut;
+        for (const int i : g.pixels) {
+            cut.left = cut.left || i % cols == 0;
+            cut.right = cut.right || i % cols == cols - 1;
+        }
+        return cut;
+    }
+
+    /**
+     * The body centre: behind the visible surface along the view and, when one side edge of
+     * the image cuts the body, beyond the visible part towards that edge, by half the width not
+     * seen. The visible part's centroid alone puts a person leaving the view inside it, and a
+     * track then takes up a sideways velocity from the last detections.
+     */
+    Eigen::Vector2d bodyCentre(const Group& g, const Eigen::Vector2d& along,
+                               const SideCut& cut) const {
+        const Eigen::Vector2d centre = g.centroid().head<2>() + params.centreOffset * along;
+        if (cut.left == cut.right)
+            return centre;
+        const Eigen::Vector2d left(-along.y(), along.x());
+        const double seen = horizontalExtents(g, along).x();
+        const double unseen = std::max(0.0, params.bodyHalfWidth - 0.5 * seen);
+        return centre + (cut.left ? unseen : -unseen) * left;
+    }
+
     void acceptIfPerson(const Group& g) {
         const double evidence = g.evidenceArea / g.area;
         if (evidence < params.minEvidenceFraction || !sizeFitsPerson(g))
@@ -356,12 +388,14 @@ private:
         const Eigen::Vector2d along = viewDirection(g);
         PersonDetection d;
         d.measurement.id = -1;
-        d.measurement.position = centroid.head<2>() + params.centreOffset * along;
+        const SideCut cut = sideCut(g);
+        d.measurement.position = bodyCentre(g, along, cut);
         Eigen::Matrix2d axes;
         axes.col(0) = along;
         axes.col(1) = Eigen::Vector2d(-along.y(), along.x());
-        const Eigen::Vector2d var(params.sigmaAlong * params.sigmaAlong,
-                                  params.sigmaAcross * params.sigmaAcross);
+        d.cutBySide = cut.any();
+        const double across = d.cutBySide ? params.sideSigmaAcross : params.sigmaAcross;
+        const Eigen::Vector2d var(params.sigmaAlong * params.sigmaAlong, across * across);
         d.measurement.covariance = axes * var.asDiagonal() * axes.transpose();
         d.surfaceCentroid = centroid;
         d.area = g.area;
@@ -438,6 +472,7 @@ DetectorParams DetectorParams::fromConfig(const mrpt::config::CConfigFileBase& c
     p.mergeDistance = requireNonNegative(r, "merge_distance");
     p.sigmaAlong = requirePositive(r, "sigma_along");
     p.sigmaAcross = requirePositive(r, "sigma_across");
+    p.sideSigmaAcross = requirePositive(r, "side_sigma_across");
     p.imprintKeep = requireNonNegative(r, "imprint_keep_s");
     p.minFreshFraction = requireNonNegative(r, "min_fresh_fraction");
     p.seeThroughDepth = requireNonNegative(r, "see_through_depth");

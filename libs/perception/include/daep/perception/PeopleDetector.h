@@ -42,6 +42,7 @@ struct DetectorParams {
     double mergeDistance = 0.8;      ///< clusters whose centres are closer (m) are one person
     double sigmaAlong = 0.15;        ///< position std along the viewing direction (m)
     double sigmaAcross = 0.10;       ///< position std across it (m)
+    double sideSigmaAcross = 0.20;   ///< across it for a person the image's side edge cuts (m)
     double minFreshFraction = 0.05;  ///< share contradicting the map now that refreshes the memory
     double imprintKeep = 2.0;        ///< cells a person occupied count as dynamic this long (s)
     double seeThroughDepth = 0.2;    ///< an occupied cell this close before an unknown point (m)
@@ -60,6 +61,7 @@ struct PersonDetection {
     double area = 0.0;                                          ///< visible surface, m^2
     double evidenceFraction = 0.0;  ///< share of the surface that contradicts the static map
     int pixels = 0;
+    bool cutBySide = false;  ///< the image's left or right edge cuts the person
 };
 
 /**
