@@ -454,5 +454,41 @@ TEST_F(FreeBlockMap, NoFrontierViewpointFromWhereNoFreeCellLeads) {
     EXPECT_TRUE(map_.frontierViewpoints({40.0, 0.5, 0.5}, anywhere, 5, 0.5, 8).empty());
 }
 
+/** Usable except in a wall of cells across the block at x 1.8..2.2, open for y > 1.6. */
+bool usableBesideTheWall(const Eigen::Vector3d& p, double doorFrom) {
+    return p.x() < 1.8 || p.x() > 2.2 || p.y() > doorFrom;
+}
+
+TEST_F(FreeBlockMap, AFreeCellPathTakesTheFewestFaceStepsThroughTheDoorway) {
+    const auto usable = [](const Eigen::Vector3d& p) { return usableBesideTheWall(p, 1.6); };
+    const auto east = [](const Eigen::Vector3d& p) { return p.x() > 3.5; };
+    const Eigen::Vector3d from(0.5, 0.5, 0.5);
+    const std::vector<Eigen::Vector3d> path = map_.freeCellPath(from, usable, east);
+    // Cell (2, 2, 2) to the nearest x >= 18 through y >= 8: 16 steps east, 6 north.
+    ASSERT_EQ(path.size(), 1u + 16u + 6u);
+    EXPECT_EQ(path.front(), from);
+    EXPECT_TRUE(east(path.back()));
+    bool throughTheDoor = false;
+    for (std::size_t k = 1; k < path.size(); ++k) {
+        EXPECT_TRUE(map_.isFree(path[k]) && usable(path[k])) << path[k].transpose();
+        if (k > 1)
+            EXPECT_NEAR((path[k] - path[k - 1]).norm(), kRes, 1e-9) << k;
+        throughTheDoor = throughTheDoor || (std::abs(path[k].x() - 1.9) < 0.05);
+    }
+    EXPECT_TRUE(throughTheDoor);
+}
+
+TEST_F(FreeBlockMap, NoFreeCellPathWhenTheWallIsClosedOrNoCellIsAGoal) {
+    const auto closed = [](const Eigen::Vector3d& p) { return usableBesideTheWall(p, 9.0); };
+    const auto east = [](const Eigen::Vector3d& p) { return p.x() > 3.5; };
+    EXPECT_TRUE(map_.freeCellPath({0.5, 0.5, 0.5}, closed, east).empty());
+    const auto nowhere = [](const Eigen::Vector3d&) { return false; };
+    const auto anywhere = [](const Eigen::Vector3d&) { return true; };
+    EXPECT_TRUE(map_.freeCellPath({0.5, 0.5, 0.5}, anywhere, nowhere).empty());
+    EXPECT_TRUE(map_.freeCellPath({40.0, 0.5, 0.5}, anywhere, anywhere).empty());
+    // The start cell itself is never the goal: the nearest other one is.
+    EXPECT_EQ(map_.freeCellPath({0.5, 0.5, 0.5}, anywhere, anywhere).size(), 2u);
+}
+
 }  // namespace
 }  // namespace daep::mapping

@@ -344,6 +344,43 @@ TEST(AepPlanner, WithMapFrontiersAFailedGlobalPlanLooksForTheFrontierItCanReach)
     }
 }
 
+TEST(AepPlanner, WithMapPathsATreeTooSmallToReachAFrontierDoesNotCountAsAFailure) {
+    // A frontier cached 27 m down a known free corridor; a two-node global tree reaches
+    // nothing that far. Without map paths every global plan fails and counts; with them the
+    // drone flies there through the map's free cells, every leg with its clearance.
+    for (const std::string mapPaths : {"false", "true"}) {
+        std::string text = test::editKey(test::defaultsText(), "aep", "map_paths", &mapPaths);
+        for (const char* key : {"global_min_nodes", "global_max_nodes"}) {
+            const std::string two = "2";
+            text = test::editKey(text, "aep", key, &two);
+        }
+        const std::string counter = "25";
+        text = test::editKey(text, "aep", "global_planner_counter", &counter);
+        const auto cfg = test::configFromText(text);
+        AepPlanner planner(AepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), 5);
+        auto map = westKnown(40.0, 30.0);
+        planner.cache().insert({29.0, 2.0, 1.0}, 0.0, 100.0);
+        const Plan plan = planner.plan(contextFor(*map, {2.0, 2.0, 1.0}));
+        if (mapPaths == "false") {
+            EXPECT_TRUE(plan.waypoints.empty()) << plan.reason;
+            continue;
+        }
+        ASSERT_EQ(plan.status, Plan::Status::Path) << plan.reason;
+        EXPECT_NE(plan.reason.find("through the map's free cells"), std::string::npos)
+            << plan.reason;
+        ASSERT_FALSE(plan.waypoints.empty());
+        EXPECT_LT((plan.waypoints.back().pose.position - Eigen::Vector3d(29.0, 2.0, 1.0)).norm(),
+                  1e-9);
+        Eigen::Vector3d at(2.0, 2.0, 1.0);
+        for (const Waypoint& w : plan.waypoints) {
+            EXPECT_TRUE(map->isSegmentFree(at, w.pose.position, planner.params().robotRadius))
+                << w.pose.position.transpose();
+            at = w.pose.position;
+        }
+        EXPECT_LE(plan.waypoints.size(), 4u);  // shortcut: straight down the corridor
+    }
+}
+
 TEST(AepPlanner, AsTheReferenceBaselineItKeepsTryingWhileAFrontierIsLeft) {
     // The reference AEP's loop ends only when no frontier is left: back at x = 2 behind the
     // imprint, every global plan fails, and the drone hovers global_retry_wait_s and retries.
@@ -408,9 +445,10 @@ TEST(CreatePlanner, KnowsAepAndNamesItsMissingKeys) {
     const std::string text = test::defaultsText();
     const auto cfg = test::configFromText(text);
     EXPECT_EQ(createPlanner("aep", *cfg, 1)->name(), "aep");
-    for (const std::string key : {"lambda", "zero_gain", "sigma_thresh", "cache_node_threshold",
-                                  "global_min_nodes", "goal_radius", "global_planner_counter",
-                                  "global_retry_wait_s", "max_sampling_radius", "rewire_radius"}) {
+    for (const std::string key :
+         {"lambda", "zero_gain", "sigma_thresh", "cache_node_threshold", "global_min_nodes",
+          "goal_radius", "global_planner_counter", "global_retry_wait_s", "max_sampling_radius",
+          "rewire_radius", "map_frontiers", "map_paths"}) {
         const auto missing = test::configFromText(test::editKey(text, "aep", key));
         try {
             createPlanner("aep", *missing, 1);

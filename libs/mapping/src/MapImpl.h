@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "OctreeKeys.h"
@@ -82,6 +83,13 @@ struct ExplorationMap::Impl {
                                   octomap::key_type(gridMin[1] + i % plane / dims[0]),
                                   octomap::key_type(gridMin[2] + i / plane));
     }
+
+    Eigen::Vector3d cellCentre(std::int64_t i) const;
+
+    std::int64_t walkFreeCells(std::int64_t start,
+                               const std::function<bool(const Eigen::Vector3d&)>& usable,
+                               const std::function<bool(std::int64_t)>& visit,
+                               std::vector<std::int64_t>* parents = nullptr) const;
 
     CellState stateAt(const octomap::OcTreeKey& key) const {
         const std::int64_t i = gridIndex(key);

@@ -50,6 +50,7 @@ AepParams AepParams::fromConfig(const mrpt::config::CConfigFileBase& config,
     p.globalPlannerCounter = requireIntAtLeast(r, "global_planner_counter", 0);
     p.globalRetryWait = requireNonNegative(r, "global_retry_wait_s");
     p.mapFrontiers = r.requireBool("map_frontiers");
+    p.mapPaths = r.requireBool("map_paths");
     const ConfigReader planning(config, "planning");
     p.robotRadius = requireNonNegative(planning, "robot_radius");
     p.bodyHalfHeight = 0.5 * requirePositiveXyz(ConfigReader(config, "drone"), "box").z();
@@ -296,21 +297,13 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
             continue;
         if (!verifyFrontier(*context.map, f))
             continue;
-        const CachedGain& frontier = cache_.entry(f);
-        const YawGain view{frontier.yaw, frontier.gain};
         std::vector<Eigen::Vector3d> path{context.pose.position};
         for (int i : tree().branch(node))
             path.push_back(tree().node(i).position);
-        const Eigen::Vector3d& last = path.back();
-        if (samplingBox_.contains(frontier.position) &&
-            pathSpace_.staticValid(last, frontier.position, false))
-            path.push_back(frontier.position);
-        globalFailures_ = 0;
-        Plan out = pathPlan(context, shortcut(context, path), view.yaw);
+        Plan out = frontierPlan(context, shortcut(context, withFrontier(path, f)), f);
         out.tree = std::move(plan.tree);
-        out.gain = view.gain;
         out.score = localScore;
-        why << "global: frontier gain " << view.gain << " at path cost " << cost << ", "
+        why << "global: frontier gain " << out.gain << " at path cost " << cost << ", "
             << cache_.size() << " frontiers, " << tree().size() - 1 << " nodes";
         out.reason = why.str();
         return out;
@@ -326,6 +319,27 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
         why << "global: people block the way to " << cache_.size() << " frontiers";
         plan.reason = why.str();
         return plan;
+    }
+    if (usesPeople() && tree().size() <= 1 && !rootFree_) {
+        // Nothing flyable around the drone, which came here through free space: what hems it
+        // in was mapped since, and among people that is someone's imprint (a head passing
+        // under it). The camera clears it; it says nothing of the frontiers.
+        plan.status = Plan::Status::NoPath;
+        why << "global: hemmed in where it hovers, by what was mapped since it came";
+        plan.reason = why.str();
+        return plan;
+    }
+    if (params_.mapPaths) {
+        Plan out = mapPathPlan(context);
+        if (out.status == Plan::Status::Path) {
+            out.tree = std::move(plan.tree);
+            out.score = localScore;
+            why << "global, through the map's free cells: frontier gain " << out.gain << ", "
+                << cache_.size() << " frontiers, " << out.waypoints.size() << " waypoints; "
+                << tree().size() - 1 << " nodes reached none";
+            out.reason = why.str();
+            return out;
+        }
     }
     ++globalFailures_;
     // Frontiers a tree sample saw may all lie out of reach now (the map around them filled
@@ -345,6 +359,57 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
     }
     plan.reason = why.str();
     return plan;
+}
+
+std::vector<Eigen::Vector3d> AepPlanner::withFrontier(std::vector<Eigen::Vector3d> path,
+                                                      int f) const {
+    const Eigen::Vector3d& frontier = cache_.entry(f).position;
+    if (samplingBox_.contains(frontier) && pathSpace_.staticValid(path.back(), frontier, false))
+        path.push_back(frontier);
+    return path;
+}
+
+Plan AepPlanner::frontierPlan(const PlanningContext& context,
+                              const std::vector<Eigen::Vector3d>& path, int f) {
+    globalFailures_ = 0;
+    Plan out = pathPlan(context, path, cache_.entry(f).yaw);
+    out.gain = cache_.entry(f).gain;
+    return out;
+}
+
+Plan AepPlanner::mapPathPlan(const PlanningContext& context) {
+    // A found frontier whose gain is gone (re-cast) is dropped, and the search runs again.
+    constexpr int kMaxSearches = 3;
+    const Eigen::Vector3d& root = context.pose.position;
+    const auto usable = [&](const Eigen::Vector3d& p) {
+        return samplingBox_.contains(p) && pathSpace_.staticValid(p, p, false);
+    };
+    Plan none;
+    none.status = Plan::Status::NoPath;
+    for (int search = 0; search < kMaxSearches && !context.deadline.passed(); ++search) {
+        int goal = -1;
+        const auto nearFrontier = [&](const Eigen::Vector3d& p) {
+            for (int f : cache_.near(p, params_.goalRadius))
+                if (cache_.entry(f).alive &&
+                    (cache_.entry(f).position - root).norm() > params_.goalRadius) {
+                    goal = f;
+                    return true;
+                }
+            return false;
+        };
+        const std::vector<Eigen::Vector3d> cells =
+            context.map->freeCellPath(root, usable, nearFrontier);
+        if (cells.empty())
+            return none;
+        if (!verifyFrontier(*context.map, goal))
+            continue;
+        const std::vector<Eigen::Vector3d> path = shortcut(context, withFrontier(cells, goal));
+        for (std::size_t k = 1; k < path.size(); ++k)
+            if (!pathSpace_.staticValid(path[k - 1], path[k], k == 1 && !rootFree_))
+                return none;
+        return frontierPlan(context, path, goal);
+    }
+    return none;
 }
 
 std::vector<Eigen::Vector3d> AepPlanner::shortcut(const PlanningContext& context,

@@ -155,6 +155,16 @@ public:
         const Eigen::Vector3d& from, const std::function<bool(const Eigen::Vector3d&)>& usable,
         int reach, double spacing, std::size_t maxViewpoints) const;
 
+    /**
+     * The fewest face steps from `from` to a cell whose centre `isGoal` accepts, through the
+     * cells frontierViewpoints walks (known free, inside the box, `usable` at the centre):
+     * `from`, then the cells' centres. Empty when no such cell is reached. What a sampled
+     * tree's budget can miss (a narrow doorway far off), searched exhaustively.
+     */
+    std::vector<Eigen::Vector3d> freeCellPath(
+        const Eigen::Vector3d& from, const std::function<bool(const Eigen::Vector3d&)>& usable,
+        const std::function<bool(const Eigen::Vector3d&)>& isGoal) const;
+
     /** Known (free or occupied) cells whose centre lies inside the exploration box. */
     std::size_t knownCellsInBox() const { return knownInBox_; }
     double knownVolumeInBox() const;

@@ -43,6 +43,12 @@ struct AepParams {
      * can hold most of what is left). Off for the reference AEP baseline.
      */
     bool mapFrontiers = false;
+    /**
+     * When the global tree reaches no frontier, search the map's known free cells (with the
+     * drone's clearance) for a way to one before the plan counts as failed: a sampled tree's
+     * budget can miss a narrow passage far off. Off for the reference AEP baseline.
+     */
+    bool mapPaths = false;
     double robotRadius = 0.3;
     double bodyHalfHeight = 0.05;  ///< half the drone's height ([drone] box_z)
     /**
@@ -135,6 +141,15 @@ private:
      * cache threshold (see AepParams::mapFrontiers).
      */
     void cacheMapFrontiers(const PlanningContext& context);
+    /**
+     * A path to the nearest live frontier through the map's known free cells
+     * (AepParams::mapPaths), shortcut like a tree's; no path (status NoPath) when none is
+     * found or a leg of it fails the static path space.
+     */
+    Plan mapPathPlan(const PlanningContext& context);
+    /** The plan flying `path` (from the drone) to cached frontier f, seen from its yaw. */
+    Plan frontierPlan(const PlanningContext& context, const std::vector<Eigen::Vector3d>& path,
+                      int f);
     /** Re-casts a cached viewpoint; drops it (false) when its gain fell to the threshold. */
     bool verifyFrontier(const mapping::ExplorationMap& map, int id);
     /** Returns whether a node came within goal_radius of a live frontier. */
@@ -147,6 +162,8 @@ private:
      * the failure counting towards the end of the mission.
      */
     bool peopleBlockFrontiers(const PlanningContext& context);
+    /** `path` with cached frontier f's position appended when the last leg to it is valid. */
+    std::vector<Eigen::Vector3d> withFrontier(std::vector<Eigen::Vector3d> path, int f) const;
     std::vector<Eigen::Vector3d> shortcut(const PlanningContext& context,
                                           const std::vector<Eigen::Vector3d>& path) const;
     Plan pathPlan(const PlanningContext& context, const std::vector<Eigen::Vector3d>& path,
