@@ -320,7 +320,7 @@ Plan AepPlanner::globalPlan(const PlanningContext& context, double localScore) {
         plan.reason = why.str();
         return plan;
     }
-    if (usesPeople() && tree().size() <= 1 && !rootFree_) {
+    if (mayBeHemmedByPeople() && tree().size() <= 1 && !rootFree_) {
         // Nothing flyable around the drone, which came here through free space: what hems it
         // in was mapped since, and among people that is someone's imprint (a head passing
         // under it). The camera clears it; it says nothing of the frontiers.

@@ -102,6 +102,7 @@ DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const 
 void DaepPlanner::observePeople(const PlanningContext& context) {
     flight().faceTravel = isOn(params_.faceTravel, context.peopleFromCamera);
     obstacles_ = obstaclesOf(context);
+    peopleSeen_ = peopleSeen_ || !obstacles_.people().empty();
     if (dfm_.width() == 0) {
         dfm_ = DynamicFrequencyMap(context.explorationBox, params_.dfmCellSize);
         BlindWatchParams blind = params_.blind;

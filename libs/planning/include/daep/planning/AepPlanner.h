@@ -111,6 +111,12 @@ public:
 
 protected:
     /**
+     * Whether what hems the drone in where it hovers may be a person's imprint, mapped after
+     * it came (then a global tree with no node does not count as a failed global plan). AEP
+     * maps people as it sees them and counts it.
+     */
+    virtual bool mayBeHemmedByPeople() const { return false; }
+    /**
      * Grows the trees over other parts (DAEP: the time-aware validator, the dynamic score and
      * the dynamic information gain). They must outlive the planner's use of them; the flight
      * model stays the planner's own (flight()).

@@ -132,6 +132,7 @@ public:
                                          std::size_t fromWaypoint) const;
 
 private:
+    bool mayBeHemmedByPeople() const override { return peopleSeen_; }
     void observePeople(const PlanningContext& context);
     /** The people of the context as predicted bodies, sized for this drone and these people. */
     DynamicObstacles obstaclesOf(const PlanningContext& context) const;
@@ -206,6 +207,7 @@ private:
     DaepParams params_;
     bool guardingBlind_ = false;    ///< blindGuard decided for the current context
     bool flyingOverHeads_ = false;  ///< flyOverHeads decided for the current context
+    bool peopleSeen_ = false;       ///< someone was among the people input this mission
     BlindWatch watch_;
     int looks_ = 0;  ///< blind looks in a row
     DynamicObstacles obstacles_;
