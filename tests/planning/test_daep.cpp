@@ -8,6 +8,7 @@
 #include "daep/perception/PersonTrack.h"
 #include "daep/planning/DaepPlanner.h"
 #include "daep/planning/FlightSpace.h"
+#include "daep/planning/GainEvaluator.h"
 #include "daep/planning/PlannerRegistry.h"
 #include "daep/planning/WayOut.h"
 
@@ -692,6 +693,50 @@ TEST_F(TallRoom, WithPeopleFromTheCameraStopsAreRaisedOverTheirHeads) {
         EXPECT_EQ(k, asPlanned.waypoints.size()) << seed;  // every planned stop, in order
     }
     EXPECT_GT(raised, 3);
+}
+
+/**
+ * An 8 x 4 x 2.5 m box, known west of x = 4.4 and unknown east of x = 4.6, between them a
+ * lintel from z = 1.6 m up across the whole width: the unknown is seen under it, from low.
+ */
+std::unique_ptr<mapping::ExplorationMap> roomBehindALintel() {
+    auto map = test::makeMap(test::box(0, 0, 0, 8, 4, 2.5), 6.0);
+    for (double y = 0.1; y < 4.0; y += 0.2)
+        for (double z = 0.1; z < 2.7; z += 0.2) {  // the cells up to 2.6 m: room over heads
+            const bool lintel = z > 1.6;
+            const double from = lintel ? 4.5 : 4.59;  // the doorway itself is free
+            map->insertPointCloud({from, y, z}, {Eigen::Vector3f(-100.f, float(y), float(z))});
+            if (lintel)
+                map->insertPointCloud({4.5, y, z}, {Eigen::Vector3f(4.5f, float(y), float(z))});
+        }
+    return map;
+}
+
+TEST(DaepOverHeads, AGoalWhoseViewIsUnderALintelIsNotRaisedOverTheHeads) {
+    auto map = roomBehindALintel();
+    const auto cfg = test::configFromText(daepText());
+    GainEvaluator gain(GainParams::fromConfig(*cfg));  // the planner's, border boost and all
+    const DaepParams params = DaepParams::fromConfig(*cfg);
+    gain.setYawAngleBooster(params.borderBoost, params.borderDistance);
+    const double overHeads = 1.8 + 0.05 + 0.2 + 0.05;
+    int keptLow = 0;
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        const auto [plan, asPlanned] = planRaisedAndNot(*map, {2.0, 2.0, 1.0}, seed, "auto", true);
+        ASSERT_FALSE(plan.waypoints.empty()) << plan.reason;
+        ASSERT_FALSE(asPlanned.waypoints.empty()) << asPlanned.reason;
+        const Eigen::Vector3d goal = asPlanned.waypoints.back().pose.position;
+        const Eigen::Vector3d up(goal.x(), goal.y(), overHeads);
+        ASSERT_TRUE(map->isSegmentFree(up, up, 0.3));
+        const Eigen::Vector3d& flown = plan.waypoints.back().pose.position;
+        if (gain.bestYaw(*map, up).gain < 0.5 * asPlanned.gain) {
+            // The goal where it was planned: the view it was chosen for.
+            EXPECT_TRUE(flown.isApprox(goal, 1e-9)) << seed << ": " << flown.transpose();
+            ++keptLow;
+        } else {
+            EXPECT_TRUE(flown.isApprox(up, 1e-9)) << seed << ": " << flown.transpose();
+        }
+    }
+    EXPECT_GT(keptLow, 1);
 }
 
 TEST_F(TallRoom, WithGroundTruthPeopleOrNoRoomOverHeadsThePlanIsKept) {

@@ -500,6 +500,16 @@ Plan DaepPlanner::plan(const PlanningContext& context) {
     return overHeads(context, wait(context, plan.reason));
 }
 
+bool DaepPlanner::keepsViewLow(const PlanningContext& context, const Plan& plan,
+                               const Eigen::Vector3d& raisedGoal) const {
+    // The goal's gain was judged where the planner put it. Over the heads the view may miss
+    // what it was for: through a doorway, under a lintel the drone cannot see past from above.
+    constexpr double kViewKept = 0.5;
+    const Eigen::Vector3d& goal = plan.waypoints.back().pose.position;
+    return plan.gain > 0.0 && raisedGoal != goal &&
+           gainEvaluator().bestYaw(*context.map, raisedGoal).gain < kViewKept * plan.gain;
+}
+
 Plan DaepPlanner::overHeads(const PlanningContext& context, Plan plan) const {
     if (plan.status != Plan::Status::Path || plan.escape)
         return plan;
@@ -514,7 +524,11 @@ Plan DaepPlanner::overHeads(const PlanningContext& context, Plan plan) const {
     const Eigen::Vector3d& start = context.pose.position;
     space.leavingBlocked = !context.map->isSegmentFree(start, start, space.radius);
     std::vector<Waypoint> raised = plan.waypoints;
-    const bool any = raiseStops(space, start, raised);
+    bool any = raiseStops(space, start, raised);
+    if (any && keepsViewLow(context, plan, raised.back().pose.position)) {
+        raised.back() = plan.waypoints.back();
+        any = !samePositions(raised, plan.waypoints);
+    }
     // Kept high between the stops if that is clear of the people, else the raised stops alone;
     // either way it stops over the heads before going down among the people again.
     for (std::vector<Waypoint> way : {stayHigh(space, start, raised), raised}) {

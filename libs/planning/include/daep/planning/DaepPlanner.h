@@ -199,6 +199,12 @@ private:
      */
     Plan overHeads(const PlanningContext& context, Plan plan) const;
     /**
+     * Whether the plan's goal stays where the planner put it rather than at `raisedGoal`, over
+     * the heads: when the view from there keeps less than half of the goal's gain.
+     */
+    bool keepsViewLow(const PlanningContext& context, const Plan& plan,
+                      const Eigen::Vector3d& raisedGoal) const;
+    /**
      * The height of stops over heads, when raising them is on and the box (as the people were
      * last observed with it) has room for it.
      */
