@@ -18,12 +18,6 @@ std::int64_t ExplorationMap::Impl::walkFreeCells(
     const std::function<bool(std::int64_t)>& visit, std::vector<std::int64_t>* parents) const {
     const std::array<std::int64_t, 3> size{dims[0], dims[1], dims[2]};
     const std::array<std::int64_t, 3> stride{1, size[0], size[0] * size[1]};
-    const auto inside = [this, &size, &stride](std::int64_t i) {
-        for (std::size_t a = 0; a < 3; ++a)
-            if (!inBox[a][std::size_t(i / stride[a] % size[a])])
-                return false;
-        return true;
-    };
     if (parents != nullptr)
         parents->assign(cells.size(), -1);
     std::vector<bool> reached(cells.size(), false);
@@ -41,7 +35,7 @@ std::int64_t ExplorationMap::Impl::walkFreeCells(
                 if ((dir < 0 && c == 0) || (dir > 0 && c + 1 >= size[a]))
                     continue;
                 const std::int64_t j = i + dir * stride[a];
-                if (reached[std::size_t(j)] || !inside(j) ||
+                if (reached[std::size_t(j)] || !indexInBox(j) ||
                     CellState(cells[std::size_t(j)]) != CellState::Free)
                     continue;
                 reached[std::size_t(j)] = true;
@@ -56,6 +50,14 @@ std::int64_t ExplorationMap::Impl::walkFreeCells(
             return i;
     }
     return -1;
+}
+
+bool ExplorationMap::Impl::indexInBox(std::int64_t i) const {
+    const std::array<std::int64_t, 3> stride{1, dims[0], std::int64_t(dims[0]) * dims[1]};
+    for (std::size_t a = 0; a < 3; ++a)
+        if (!inBox[a][std::size_t(i / stride[a] % dims[a])])
+            return false;
+    return true;
 }
 
 Eigen::Vector3d ExplorationMap::Impl::cellCentre(std::int64_t i) const {
@@ -73,12 +75,6 @@ std::vector<Eigen::Vector3d> ExplorationMap::frontierViewpoints(
         return viewpoints;
     const std::array<std::int64_t, 3> dims{m.dims[0], m.dims[1], m.dims[2]};
     const std::array<std::int64_t, 3> stride{1, dims[0], dims[0] * dims[1]};
-    const auto inBox = [&m, &dims, &stride](std::int64_t i) {
-        for (std::size_t a = 0; a < 3; ++a)
-            if (!m.inBox[a][std::size_t(i / stride[a] % dims[a])])
-                return false;
-        return true;
-    };
     const auto stateOf = [&m](std::int64_t i) { return CellState(m.cells[std::size_t(i)]); };
     // Whether an unknown cell inside the box lies within `reach` cells of i along an axis,
     // with free cells between: the camera at i sees into the unknown.
@@ -92,7 +88,7 @@ std::vector<Eigen::Vector3d> ExplorationMap::frontierViewpoints(
                         break;
                     j += dir * stride[a];
                     const CellState s = stateOf(j);
-                    if (s == CellState::Unknown && inBox(j))
+                    if (s == CellState::Unknown && m.indexInBox(j))
                         return true;
                     if (s != CellState::Free)
                         break;

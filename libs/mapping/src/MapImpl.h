@@ -85,6 +85,8 @@ struct ExplorationMap::Impl {
     }
 
     Eigen::Vector3d cellCentre(std::int64_t i) const;
+    /** Whether the dense cell's centre lies inside the exploration box (see inBox). */
+    bool indexInBox(std::int64_t i) const;
 
     std::int64_t walkFreeCells(std::int64_t start,
                                const std::function<bool(const Eigen::Vector3d&)>& usable,

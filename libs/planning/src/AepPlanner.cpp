@@ -194,15 +194,17 @@ Plan AepPlanner::planAtDeadline(const PlanningContext& context) {
     return plan;
 }
 
+bool AepPlanner::hasClearance(const Eigen::Vector3d& p) const {
+    return samplingBox_.contains(p) && pathSpace_.staticValid(p, p, false);
+}
+
 void AepPlanner::cacheMapFrontiers(const PlanningContext& context) {
     // Viewpoints where the drone has its clearance in the path space and reaches them so,
     // within 1 m of the unknown; 1 m apart, and at most kMaxViews ray casts.
     constexpr int kReach = 5;
     constexpr double kSpacing = 1.0;
     constexpr std::size_t kMaxViews = 40;
-    const auto usable = [&](const Eigen::Vector3d& p) {
-        return samplingBox_.contains(p) && pathSpace_.staticValid(p, p, false);
-    };
+    const auto usable = [this](const Eigen::Vector3d& p) { return hasClearance(p); };
     for (const Eigen::Vector3d& p : context.map->frontierViewpoints(context.pose.position, usable,
                                                                     kReach, kSpacing, kMaxViews)) {
         if (context.deadline.passed())
@@ -381,9 +383,7 @@ Plan AepPlanner::mapPathPlan(const PlanningContext& context) {
     // A found frontier whose gain is gone (re-cast) is dropped, and the search runs again.
     constexpr int kMaxSearches = 3;
     const Eigen::Vector3d& root = context.pose.position;
-    const auto usable = [&](const Eigen::Vector3d& p) {
-        return samplingBox_.contains(p) && pathSpace_.staticValid(p, p, false);
-    };
+    const auto usable = [this](const Eigen::Vector3d& p) { return hasClearance(p); };
     Plan none;
     none.status = Plan::Status::NoPath;
     for (int search = 0; search < kMaxSearches && !context.deadline.passed(); ++search) {

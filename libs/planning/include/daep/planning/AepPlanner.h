@@ -147,6 +147,8 @@ private:
      * cache threshold (see AepParams::mapFrontiers).
      */
     void cacheMapFrontiers(const PlanningContext& context);
+    /** Inside the sampling box, the drone's ball known free: where the map's walks may go. */
+    bool hasClearance(const Eigen::Vector3d& p) const;
     /**
      * A path to the nearest live frontier through the map's known free cells
      * (AepParams::mapPaths), shortcut like a tree's; no path (status NoPath) when none is
