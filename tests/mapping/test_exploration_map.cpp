@@ -65,6 +65,56 @@ TEST(ExplorationMap, WallCloudClearsFrontMarksWallLeavesBehindUnknown) {
     EXPECT_GT(map.knownCellsInBox(), 0u);
 }
 
+/** A camera of one ray along +x at 1.1 m: a wall 3 m ahead, a walker who may step in at 1.8 m. */
+struct OneRayFrames : ::testing::Test {
+    ExplorationMap map{MapParams{}, makeBox({-1, -3, 0}, {8, 3, 3})};
+    const Eigen::Vector3d eye{0.1, 0.1, 1.1}, wall{3.1, 0.1, 1.1}, walker{1.9, 0.1, 1.1};
+    void frames(const Eigen::Vector3d& end, int n = 1) {
+        for (int k = 0; k < n; ++k)
+            map.insertPointCloud(eye, {end.cast<float>()});
+    }
+};
+
+TEST_F(OneRayFrames, OnlyWhatMovesIntoSurelyFreeSpaceHasMovedIn) {
+    frames(wall, 2);  // the wall, seen at once: occupied, never free
+    EXPECT_TRUE(map.isOccupied(wall));
+    EXPECT_FALSE(map.movedIn(wall));
+    // Once free, not yet surely: a return there is no proof something moved in.
+    frames(wall);
+    frames(walker);
+    EXPECT_FALSE(map.movedIn(walker));
+    // Cleared down to the clamping threshold, then a return: someone walked in.
+    frames(wall, 8);
+    ASSERT_TRUE(map.isFree(walker));
+    EXPECT_FALSE(map.movedIn(walker));
+    frames(walker);
+    EXPECT_TRUE(map.movedIn(walker));
+    // It stays marked through their stay and after they leave; the wall behind stays static.
+    frames(walker, 3);
+    EXPECT_TRUE(map.isOccupied(walker));
+    EXPECT_TRUE(map.movedIn(walker));
+    EXPECT_FALSE(map.movedIn(wall));
+    EXPECT_FALSE(map.movedIn({20.0, 0.1, 1.1}));  // off the grid
+}
+
+TEST_F(OneRayFrames, ImprintsAndFlownCellsLetACapsuleThroughWallsDoNot) {
+    frames(wall, 8);
+    frames(walker, 3);
+    ASSERT_TRUE(map.isOccupied(walker) && map.movedIn(walker));
+    const Eigen::Vector3d before(1.1, 0.1, 1.1), past(2.5, 0.1, 1.1);
+    EXPECT_FALSE(map.isSegmentFree(before, past, 0.0));
+    EXPECT_TRUE(map.isSegmentFreeThroughImprints(before, past, 0.0));
+    EXPECT_FALSE(map.isSegmentFreeThroughImprints(before, wall, 0.0));
+    // The drone's own cell, where a return ended (someone walked into it): no wall there.
+    const Eigen::Vector3d own(0.7, 0.9, 1.1);
+    map.insertPointCloud(before, {own.cast<float>()});
+    ASSERT_TRUE(map.isOccupied(own) && !map.movedIn(own));
+    EXPECT_FALSE(map.isSegmentFreeThroughImprints(own, before, 0.0));
+    map.markFlown(own);
+    EXPECT_TRUE(map.isSegmentFreeThroughImprints(own, before, 0.0));
+    EXPECT_FALSE(map.isSegmentFree(own, before, 0.0));
+}
+
 TEST(ExplorationMap, PointsBeyondMaxRangeClearUpToMaxRangeOnly) {
     MapParams p;
     p.maxRange = 2.0;

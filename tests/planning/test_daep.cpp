@@ -921,5 +921,63 @@ TEST_F(CornerRoom, APlanIntoTheCornerWhileSomeoneIsNearStopsShortOfIt) {
     }
 }
 
+/**
+ * The Exhibition corner with people the camera missed: a queue walking past the corner left
+ * their imprints in the map (cells hit after they were seen surely free) all around the drone.
+ */
+TEST_F(CornerRoom, WalledInByImprintsTheDroneEscapesThroughThem) {
+    const Aabb walls = test::box(-0.1, -0.1, -0.1, 6.1, 6.1, 2.1);
+    for (int k = 0; k < 6; ++k)
+        map->insertPointCloud(middle, test::roomScan(walls, middle, 0.5));
+    std::vector<Eigen::Vector3f> imprints;
+    for (double z = 0.1; z < 2.0; z += 0.2)
+        for (double u = 0.1; u < 1.2; u += 0.2) {
+            imprints.emplace_back(1.1f, float(u), float(z));
+            imprints.emplace_back(float(u), 1.1f, float(z));
+        }
+    for (int k = 0; k < 3; ++k)
+        map->insertPointCloud(middle, imprints);
+    ASSERT_TRUE(map->isOccupied({1.1, 0.5, 1.0}));
+    ASSERT_TRUE(map->movedIn({1.1, 0.5, 1.0}));
+    ASSERT_TRUE(map->movedIn({0.5, 1.1, 1.0}));
+
+    const Eigen::Vector3d at(0.5, 0.5, 1.0);
+    DaepPlanner planner = trapGuarded();
+    const double r = planner.params().robotRadius;
+    PlanningContext ctx = contextFor(*map, at, M_PI / 4);
+    const std::vector<PersonForecast> people = walkerComingAt(at, ctx.time);
+    ctx.people = &people;
+    // No short move out of the corner is free of occupied cells: the drone used to wait there.
+    for (const double d : {0.4, 0.8, 1.2, 1.6})
+        for (int k = 0; k < 16; ++k) {
+            const double a = 2 * M_PI * k / 16;
+            const Eigen::Vector3d to = at + d * Eigen::Vector3d(std::cos(a), std::sin(a), 0);
+            EXPECT_FALSE(map->isSegmentFree(at, to, r)) << d << " m at " << a;
+        }
+    const Plan plan = planner.plan(ctx);
+    ASSERT_TRUE(plan.escape) << plan.reason;
+    EXPECT_NE(plan.reason.find("through imprints"), std::string::npos) << plan.reason;
+    const Eigen::Vector3d goal = plan.waypoints.back().pose.position;
+    EXPECT_FALSE(map->isSegmentFree(at, goal, r)) << goal.transpose();
+    EXPECT_TRUE(map->isSegmentFreeThroughImprints(at, goal, r)) << goal.transpose();
+
+    // The same cells as a wall (occupied when first seen): the corner keeps the drone.
+    const std::unique_ptr<mapping::ExplorationMap> walled =
+        test::makeMap(test::box(0, 0, 0, 6, 6, 2), 10.0);
+    for (int k = 0; k < 3; ++k)
+        walled->insertPointCloud(middle, imprints);
+    for (int k = 0; k < 5; ++k)
+        walled->insertPointCloud(at, test::roomScan(walls, at, 0.5));
+    ASSERT_TRUE(walled->isOccupied({1.1, 0.5, 1.0}));
+    ASSERT_FALSE(walled->movedIn({1.1, 0.5, 1.0}));
+    DaepPlanner cornered = trapGuarded();
+    PlanningContext there = contextFor(*walled, at, M_PI / 4);
+    there.people = &people;
+    const Plan waited = cornered.plan(there);
+    EXPECT_FALSE(waited.escape) << waited.reason;
+    EXPECT_NE(waited.reason.find("no escape is free of static obstacles"), std::string::npos)
+        << waited.reason;
+}
+
 }  // namespace
 }  // namespace daep::planning

@@ -211,6 +211,8 @@ bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) 
     std::uint8_t& f = flags[std::size_t(i)];
     const std::uint8_t before = cell, hitBefore = f & kEverHit;
     const bool newlyKnown = cell == std::uint8_t(CellState::Unknown) && keyInBox(key);
+    if (hit && (f & kClampedFree))
+        f |= kMovedIn;
     cell = std::uint8_t(tree.isNodeOccupied(node) ? CellState::Occupied : CellState::Free);
     f &= std::uint8_t(~(kClampedFree | kClampedOccupied));
     if (node->getLogOdds() <= tree.getClampingThresMinLog())
@@ -285,6 +287,11 @@ void ExplorationMap::insertPointCloud(const Eigen::Vector3d& origin,
     const octomap::point3d o(float(origin.x()), float(origin.y()), float(origin.z()));
     knownInBox_ += impl_->integrate(o, params_.maxRange);
     ++revision_;
+}
+
+bool ExplorationMap::movedIn(const Eigen::Vector3d& p) const {
+    const std::int64_t i = gridIndex_(p);
+    return i >= 0 && (impl_->flags[std::size_t(i)] & Impl::kMovedIn);
 }
 
 CellState ExplorationMap::stateOffGrid(const Eigen::Vector3d& p) const {

@@ -34,6 +34,8 @@ struct ExplorationMap::Impl {
     static constexpr std::uint8_t kClampedFree = 16, kClampedOccupied = 32;
     /// The drone's centre has been in the cell: whatever rays ended in it, no wall grazes it.
     static constexpr std::uint8_t kFlown = 64;
+    /// A return ended in the cell while it was clamped free: something moved in (see movedIn).
+    static constexpr std::uint8_t kMovedIn = 128;
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
 
@@ -106,7 +108,16 @@ struct ExplorationMap::Impl {
      * rays grazing the cell's free part have cleared. Clearance checks treat it as occupied,
      * or the drone could brush the surface.
      */
-    bool grazedSurface(const octomap::OcTreeKey& key) const;
+    bool grazedSurface(const octomap::OcTreeKey& key, bool imprintsPass = false) const;
+    /**
+     * Dense cell i is occupied, but by no wall: something moved in after it was surely free,
+     * or the drone's centre has been in it. With `imprintsPass`, grazedSurface does not count
+     * such a neighbour as a surface.
+     */
+    bool isImprint(std::int64_t i) const {
+        return cells[std::size_t(i)] == std::uint8_t(CellState::Occupied) &&
+               (flags[std::size_t(i)] & (kMovedIn | kFlown));
+    }
     bool guardGrazed = true;  ///< no person enters the map (setPeopleMapped)
     void setGuardGrazed(bool guard);
 
@@ -136,8 +147,12 @@ struct ExplorationMap::Impl {
         return tree.keyToCoord(k) - 0.5 * tree.getResolution();
     }
 
-    /** Which cells a capsule may touch: free ones (isSegmentFree), or any not occupied. */
-    enum class Passable { Free, NotOccupied };
+    /**
+     * Which cells a capsule may touch: free ones (isSegmentFree), any not occupied, or free
+     * ones and occupied ones something moved into or the drone has been in
+     * (isSegmentFreeThroughImprints).
+     */
+    enum class Passable { Free, NotOccupied, FreeOrMovedIn };
     /** True when every cell whose box is within radius of segment a-b is passable. */
     template <Passable P>
     bool capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

@@ -176,8 +176,16 @@ template <ExplorationMap::Impl::Passable P>
 bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                                double radius) const {
     const Impl& m = *this;
-    const auto allowed = [](CellState s) {
-        return P == Passable::Free ? s == CellState::Free : s != CellState::Occupied;
+    const auto allowed = [&m](CellState s, std::int64_t i) {
+        switch (P) {
+            case Passable::Free:
+                return s == CellState::Free;
+            case Passable::NotOccupied:
+                return s != CellState::Occupied;
+            case Passable::FreeOrMovedIn:
+                break;
+        }
+        return s == CellState::Free || (i >= 0 && m.isImprint(i));
     };
     const double r = std::max(0.0, radius);
     const double res = m.tree.getResolution();
@@ -210,8 +218,9 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
     };
     const auto blocks = [&](const octomap::OcTreeKey& k, std::int64_t i) {
         const CellState state = i >= 0 ? CellState(m.cells[std::size_t(i)]) : m.stateAt(k);
-        if (allowed(state) && !(m.guardGrazed && (i < 0 || (m.flags[std::size_t(i)] & kEverHit)) &&
-                                m.grazedSurface(k)))
+        if (allowed(state, i) &&
+            !(m.guardGrazed && (i < 0 || (m.flags[std::size_t(i)] & kEverHit)) &&
+              m.grazedSurface(k, P == Passable::FreeOrMovedIn)))
             return false;
         const Eigen::Vector3d cellLo(m.cellLow(k[0]), m.cellLow(k[1]), m.cellLow(k[2]));
         return segmentBoxDistance2(a, d, cellLo, cellLo.array() + res) <= r2;
@@ -273,7 +282,7 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
     return true;
 }
 
-bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key) const {
+bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key, bool imprintsPass) const {
     const std::int64_t i = gridIndex(key);
     if (i < 0 || !(flags[std::size_t(i)] & kEverHit) || (flags[std::size_t(i)] & kFlown) ||
         cells[std::size_t(i)] != std::uint8_t(CellState::Free))
@@ -284,10 +293,13 @@ bool ExplorationMap::Impl::grazedSurface(const octomap::OcTreeKey& key) const {
         interior = interior && c > 0 && c + 1 < dims[axis];
     }
     if (interior) {
+        const auto surface = [&](std::int64_t j) {
+            return cells[std::size_t(j)] != std::uint8_t(CellState::Free) &&
+                   !(imprintsPass && isImprint(j));
+        };
         const std::int64_t plane = std::int64_t(dims[0]) * dims[1];
         for (const std::int64_t step : {std::int64_t(1), std::int64_t(dims[0]), plane})
-            if (cells[std::size_t(i - step)] != std::uint8_t(CellState::Free) ||
-                cells[std::size_t(i + step)] != std::uint8_t(CellState::Free))
+            if (surface(i - step) || surface(i + step))
                 return true;
         return false;
     }
@@ -310,6 +322,11 @@ bool ExplorationMap::isSegmentFree(const Eigen::Vector3d& a, const Eigen::Vector
 bool ExplorationMap::isSegmentFreeOrUnknown(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                             double radius) const {
     return impl_->capsuleCellsAllowed<Impl::Passable::NotOccupied>(a, b, radius);
+}
+
+bool ExplorationMap::isSegmentFreeThroughImprints(const Eigen::Vector3d& a,
+                                                  const Eigen::Vector3d& b, double radius) const {
+    return impl_->capsuleCellsAllowed<Impl::Passable::FreeOrMovedIn>(a, b, radius);
 }
 
 bool ExplorationMap::isSweptBoxClearOfNew(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

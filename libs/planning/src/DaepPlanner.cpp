@@ -330,16 +330,29 @@ std::optional<double> DaepPlanner::overHeadsHeight() const {
 
 template <typename Visit>
 void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
-                                    Visit&& visit) const {
+                                    Visit&& visit, bool throughImprints) const {
     const mapping::ExplorationMap& map = *context.map;
     const double r = params().robotRadius, h = params().bodyHalfHeight;
     const Aabb box = shrink(context.explorationBox, r);
     const bool leavingBlocked = !map.isSegmentFree(from, from, r);
+    const bool leavingStatic = !map.isSegmentFreeThroughImprints(from, from, r);
+    // Through imprints: what the drone's own ball touches that is not an imprint must fall
+    // behind, so the move starts a radius out.
+    const auto flyableThroughImprints = [&](const Eigen::Vector3d& to) {
+        const double length = (to - from).norm();
+        const Eigen::Vector3d start =
+            leavingStatic ? Eigen::Vector3d(from + (to - from) * std::min(1.0, r / length)) : from;
+        return map.isSegmentFreeThroughImprints(to, to, r) &&
+               map.isSegmentFreeThroughImprints(start, to, r);
+    };
+    const auto flyable = [&](const Eigen::Vector3d& to) {
+        return throughImprints ? flyableThroughImprints(to)
+                               : segmentFlyable(map, from, to, r, h, leavingBlocked);
+    };
     if (const std::optional<double> high = overHeadsHeight(); high && *high > from.z()) {
         // Straight up, over the heads: there nobody, seen or not, can reach the drone.
         const Eigen::Vector3d up(from.x(), from.y(), *high);
-        if (segmentFlyable(map, from, up, r, h, leavingBlocked) &&
-            !visit(up, context.pose.yaw, 0.0))
+        if (flyable(up) && !visit(up, context.pose.yaw, 0.0))
             return;
     }
     for (const double distance : {0.4, 0.8, 1.2, 1.6}) {
@@ -348,7 +361,7 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
                 const double a = 2.0 * M_PI * k / 16.0;
                 const Eigen::Vector3d to =
                     from + Eigen::Vector3d(distance * std::cos(a), distance * std::sin(a), dz);
-                if (!box.contains(to) || !segmentFlyable(map, from, to, r, h, leavingBlocked))
+                if (!box.contains(to) || !flyable(to))
                     continue;
                 if (!visit(to, a, distance))
                     return;
@@ -406,7 +419,7 @@ Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
     const double halfFov = 0.5 * gainEvaluator().params().hfov;
     bool any = false;
     Escape best;
-    forEachEscapeGoal(context, from, [&](const Eigen::Vector3d& to, double a, double distance) {
+    const auto consider = [&](const Eigen::Vector3d& to, double a, double distance) {
         Escape e;
         e.distance = distance;
         e.seen = std::abs(wrapAngle(a - context.pose.yaw)) <= halfFov;
@@ -427,7 +440,15 @@ Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
             best = e;
         any = true;
         return true;
-    });
+    };
+    forEachEscapeGoal(context, from, consider);
+    // Walled in by the imprints of people the camera missed (a queue walking past a corner):
+    // they walk on, walls do not.
+    bool throughImprints = false;
+    if (!any) {
+        forEachEscapeGoal(context, from, consider, true);
+        throughImprints = any;
+    }
     if (!any)
         return wait(context, "a person is coming and no escape is free of static obstacles");
     if (best.gap <= 0.0)
@@ -440,7 +461,7 @@ Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
         {best.goal, context.time + context.motion.travelTime(context.pose, best.goal)});
     std::ostringstream why;
     why << "evasion: " << (best.seen ? "" : "blind ") << "escape of " << best.distance
-        << " m with clearance " << best.gap << " m";
+        << " m with clearance " << best.gap << " m" << (throughImprints ? " through imprints" : "");
     plan.reason = why.str();
     return plan;
 }

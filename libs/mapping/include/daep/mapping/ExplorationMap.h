@@ -107,6 +107,12 @@ public:
     bool isFree(const Eigen::Vector3d& p) const { return state(p) == CellState::Free; }
     bool isOccupied(const Eigen::Vector3d& p) const { return state(p) == CellState::Occupied; }
     bool isUnknown(const Eigen::Vector3d& p) const { return state(p) == CellState::Unknown; }
+    /**
+     * Whether a return has ended in p's cell (on the dense grid) while the map held it surely
+     * free (at the free clamping threshold): something moved into known free space, as walls
+     * do not. A person the camera's people input missed leaves such cells behind.
+     */
+    bool movedIn(const Eigen::Vector3d& p) const;
 
     /**
      * Whether people can enter this map as occupied cells (default: no). Then clearance
@@ -129,6 +135,14 @@ public:
     /** Like isSegmentFree but only occupied cells block (unknown space allowed). */
     bool isSegmentFreeOrUnknown(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                 double radius) const;
+
+    /**
+     * Like isSegmentFree, but an occupied cell something moved into (movedIn: the imprint of a
+     * person the people input missed) does not block, nor does one the drone's centre has
+     * been in (markFlown: no wall is there; a person who walked into the drone may be).
+     */
+    bool isSegmentFreeThroughImprints(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                      double radius) const;
 
     /**
      * No occupied cell enters the axis-aligned box (half extents) swept from a to b, but for

@@ -158,11 +158,12 @@ private:
     /**
      * visit(goal, heading, distance) for every short straight escape move from `from` that is
      * free of static obstacles, nearest first (straight up over the heads, where stops are
-     * raised there, at distance 0), until visit returns false.
+     * raised there, at distance 0), until visit returns false. `throughImprints`: occupied
+     * cells something moved into do not count as static (ExplorationMap::movedIn).
      */
     template <typename Visit>
     void forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
-                           Visit&& visit) const;
+                           Visit&& visit, bool throughImprints = false) const;
     Plan wait(const PlanningContext& context, const std::string& why) const;
     /**
      * The worst blind threat to a drone staying at `stop` until `until`, if guarding and the
