@@ -251,11 +251,12 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
                     return false;
                 continue;
             }
-            // Dense indices along the row when all of it lies on the grid.
+            // Dense indices along the row when all of it lies on the grid (both of its ends).
             k[0] = octomap::key_type(xLast);
-            const bool rowOnGrid = m.gridIndex(k) >= 0;
+            const bool lastOnGrid = m.gridIndex(k) >= 0;
             k[0] = octomap::key_type(xFirst);
-            const std::int64_t rowStart = rowOnGrid ? m.gridIndex(k) : -1;
+            const std::int64_t rowStart = lastOnGrid ? m.gridIndex(k) : -1;
+            const bool rowOnGrid = rowStart >= 0;
             const int gy = y - int(m.gridMin[1]), gz = z - int(m.gridMin[2]);
             if (P == Passable::Free && rowOnGrid && m.keepsPassBits(gy, gz)) {
                 const std::uint64_t* bits = m.passRow(gy, gz);
@@ -272,7 +273,7 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
             }
             for (int x = xFirst; x <= xLast; ++x) {
                 k[0] = octomap::key_type(x);
-                if (blocks(k, rowOnGrid ? rowStart + (x - xFirst) : -1)) {
+                if (blocks(k, rowOnGrid ? rowStart + (x - xFirst) : m.gridIndex(k))) {
                     lastBlocker = k;
                     return false;
                 }
