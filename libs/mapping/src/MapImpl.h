@@ -152,7 +152,7 @@ struct ExplorationMap::Impl {
      * ones and occupied ones something moved into or the drone has been in
      * (isSegmentFreeThroughImprints).
      */
-    enum class Passable { Free, NotOccupied, FreeOrMovedIn };
+    enum class Passable { Free, NotOccupied, FreeOrImprint };
     /** True when every cell whose box is within radius of segment a-b is passable. */
     template <Passable P>
     bool capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

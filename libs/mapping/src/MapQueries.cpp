@@ -182,7 +182,7 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
                 return s == CellState::Free;
             case Passable::NotOccupied:
                 return s != CellState::Occupied;
-            case Passable::FreeOrMovedIn:
+            case Passable::FreeOrImprint:
                 break;
         }
         return s == CellState::Free || (i >= 0 && m.isImprint(i));
@@ -220,7 +220,7 @@ bool ExplorationMap::Impl::capsuleCellsAllowed(const Eigen::Vector3d& a, const E
         const CellState state = i >= 0 ? CellState(m.cells[std::size_t(i)]) : m.stateAt(k);
         if (allowed(state, i) &&
             !(m.guardGrazed && (i < 0 || (m.flags[std::size_t(i)] & kEverHit)) &&
-              m.grazedSurface(k, P == Passable::FreeOrMovedIn)))
+              m.grazedSurface(k, P == Passable::FreeOrImprint)))
             return false;
         const Eigen::Vector3d cellLo(m.cellLow(k[0]), m.cellLow(k[1]), m.cellLow(k[2]));
         return segmentBoxDistance2(a, d, cellLo, cellLo.array() + res) <= r2;
@@ -327,7 +327,7 @@ bool ExplorationMap::isSegmentFreeOrUnknown(const Eigen::Vector3d& a, const Eige
 
 bool ExplorationMap::isSegmentFreeThroughImprints(const Eigen::Vector3d& a,
                                                   const Eigen::Vector3d& b, double radius) const {
-    return impl_->capsuleCellsAllowed<Impl::Passable::FreeOrMovedIn>(a, b, radius);
+    return impl_->capsuleCellsAllowed<Impl::Passable::FreeOrImprint>(a, b, radius);
 }
 
 bool ExplorationMap::isSweptBoxClearOfNew(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

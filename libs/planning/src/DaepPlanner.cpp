@@ -335,7 +335,7 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
     const double r = params().robotRadius, h = params().bodyHalfHeight;
     const Aabb box = shrink(context.explorationBox, r);
     const bool leavingBlocked = !map.isSegmentFree(from, from, r);
-    const bool leavingStatic = !map.isSegmentFreeThroughImprints(from, from, r);
+    const bool leavingStatic = throughImprints && !map.isSegmentFreeThroughImprints(from, from, r);
     // Through imprints: what the drone's own ball touches that is not an imprint must fall
     // behind, so the move starts a radius out.
     const auto flyableThroughImprints = [&](const Eigen::Vector3d& to) {
