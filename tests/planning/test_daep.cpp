@@ -809,14 +809,17 @@ DaepPlanner trapGuarded() {
 }
 
 struct CornerRoom : ::testing::Test {
-    void SetUp() override {
-        map = test::makeMap(test::box(0, 0, 0, 6, 6, 2), 10.0);
-        const Aabb walls = test::box(-0.1, -0.1, -0.1, 6.1, 6.1, 2.1);
+    void SetUp() override { seeRoom(2.0, 2.1); }
+    /** A box `top` m high in a room with its ceiling at `ceiling`, seen from the middle. */
+    void seeRoom(double top, double ceiling) {
+        map = test::makeMap(test::box(0, 0, 0, 6, 6, top), 10.0);
+        walls = test::box(-0.1, -0.1, -0.1, 6.1, 6.1, ceiling);
         map->insertPointCloud(middle, test::roomScan(walls, middle, 0.5));
     }
-    /** Someone 2.1 m from `stop` (diagonally, from the north-east), walking straight at it. */
-    static std::vector<PersonForecast> walkerComingAt(const Eigen::Vector3d& stop, double t) {
-        const Eigen::Vector2d from = stop.head<2>() + Eigen::Vector2d(1.5, 1.5);
+    /** Someone 2.1 m (or `away` x sqrt 2) from `stop`, from the north-east, walking at it. */
+    static std::vector<PersonForecast> walkerComingAt(const Eigen::Vector3d& stop, double t,
+                                                      double away = 1.5) {
+        const Eigen::Vector2d from = stop.head<2>() + Eigen::Vector2d(away, away);
         std::vector<PersonForecast> people{walker(0, from, {-0.25, -0.25}, t)};
         people[0].accelNoise = 1e-4;  // a steady walker: the prediction stays tight
         people[0].covariance.diagonal() << 1e-4, 1e-4, 1e-5, 1e-5;
@@ -850,6 +853,7 @@ struct CornerRoom : ::testing::Test {
     }
     const Eigen::Vector3d middle{3.0, 3.0, 1.0};
     const Eigen::Vector3d corner{0.7, 0.7, 1.0};
+    Aabb walls;
     std::unique_ptr<mapping::ExplorationMap> map;
 };
 
@@ -921,12 +925,44 @@ TEST_F(CornerRoom, APlanIntoTheCornerWhileSomeoneIsNearStopsShortOfIt) {
     }
 }
 
+/** The Apartment's alcove: a walker's route ends in the corner the drone stands in. */
+struct TallCornerRoom : CornerRoom {
+    // The Apartment's heights: room over the heads, the drone flies up to 2.2 m.
+    void SetUp() override { seeRoom(2.5, 3.05); }
+};
+
+TEST_F(TallCornerRoom, CorneredWithGroundTruthPeopleTheDroneClimbsOverTheWalker) {
+    // Not cruising over the heads (people from ground truth), the drone still climbs over the
+    // walker when no move on its own level keeps clear; in the open it moves aside.
+    for (const bool cornered : {true, false}) {
+        DaepPlanner planner = makePlanner(3);
+        // At head height, as in the Apartment: a climb of 0.4 m leaves the box.
+        const Eigen::Vector3d at = (cornered ? corner : middle) + Eigen::Vector3d(0, 0, 0.9);
+        map->insertPointCloud(at, test::roomScan(walls, at, 0.5));
+        PlanningContext ctx = contextFor(*map, at, M_PI / 4);
+        ctx.peopleFromCamera = false;
+        const std::vector<PersonForecast> people = walkerComingAt(at, ctx.time, 1.2);
+        ctx.people = &people;
+        const std::optional<Plan> escape = planner.evasion(ctx, ctx.time + 10);
+        ASSERT_TRUE(escape.has_value()) << cornered;
+        ASSERT_EQ(escape->waypoints.size(), 1u) << escape->reason;
+        const Eigen::Vector3d to = escape->waypoints[0].pose.position;
+        EXPECT_TRUE(planner.obstacles().isSafe(planner.timedMoves(ctx, *escape, 0)[0]))
+            << escape->reason;
+        if (cornered) {
+            EXPECT_LT(bestEscapeGap(planner, *map, ctx, at), 0.0);
+            EXPECT_TRUE(to.isApprox(Eigen::Vector3d(at.x(), at.y(), 2.1))) << escape->reason;
+        } else {
+            EXPECT_DOUBLE_EQ(to.z(), at.z()) << escape->reason;
+        }
+    }
+}
+
 /**
  * The Exhibition corner with people the camera missed: a queue walking past the corner left
  * their imprints in the map (cells hit after they were seen surely free) all around the drone.
  */
 TEST_F(CornerRoom, WalledInByImprintsTheDroneEscapesThroughThem) {
-    const Aabb walls = test::box(-0.1, -0.1, -0.1, 6.1, 6.1, 2.1);
     for (int k = 0; k < 6; ++k)
         map->insertPointCloud(middle, test::roomScan(walls, middle, 0.5));
     std::vector<Eigen::Vector3f> imprints;

@@ -322,8 +322,12 @@ struct Escape {
 }  // namespace
 
 std::optional<double> DaepPlanner::overHeadsHeight() const {
+    return flyingOverHeads_ ? escapeUpHeight() : std::nullopt;
+}
+
+std::optional<double> DaepPlanner::escapeUpHeight() const {
     const double height = obstacles_.clearedHeight() + kOverHeads;
-    if (!flyingOverHeads_ || height > obstacles_.params().ceiling)
+    if (height > obstacles_.params().ceiling)
         return std::nullopt;
     return height;
 }
@@ -368,6 +372,20 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
             }
         }
     }
+}
+
+std::optional<Eigen::Vector3d> DaepPlanner::escapeUpGoal(const PlanningContext& context) const {
+    const Eigen::Vector3d& from = context.pose.position;
+    const std::optional<double> high = escapeUpHeight();
+    if (!high || *high <= from.z())
+        return std::nullopt;
+    const mapping::ExplorationMap& map = *context.map;
+    const double r = params().robotRadius;
+    const Eigen::Vector3d up(from.x(), from.y(), *high);
+    if (!segmentFlyable(map, from, up, r, params().bodyHalfHeight,
+                        !map.isSegmentFree(from, from, r)))
+        return std::nullopt;
+    return up;
 }
 
 bool DaepPlanner::isTrap(const PlanningContext& context, const Eigen::Vector3d& stop,
@@ -442,6 +460,11 @@ Plan DaepPlanner::bestEscape(const PlanningContext& context) const {
         return true;
     };
     forEachEscapeGoal(context, from, consider);
+    // Not cruising over the heads, the drone still climbs over them when nothing on its own
+    // level keeps clear: cornered where a walker turns back, it is the way that needs no room.
+    if (!flyingOverHeads_ && (!any || best.gap <= 0.0))
+        if (const std::optional<Eigen::Vector3d> up = escapeUpGoal(context))
+            consider(*up, context.pose.yaw, 0.0);
     // Walled in by the imprints of people the camera missed (a queue walking past a corner):
     // they walk on, walls do not.
     bool throughImprints = false;

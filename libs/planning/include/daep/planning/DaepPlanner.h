@@ -210,6 +210,10 @@ private:
      * last observed with it) has room for it.
      */
     std::optional<double> overHeadsHeight() const;
+    /** The height an escape straight up reaches, over every body, when the box has room. */
+    std::optional<double> escapeUpHeight() const;
+    /** Straight up from the drone to escapeUpHeight(), when that is flyable. */
+    std::optional<Eigen::Vector3d> escapeUpGoal(const PlanningContext& context) const;
 
     DaepParams params_;
     bool guardingBlind_ = false;    ///< blindGuard decided for the current context
