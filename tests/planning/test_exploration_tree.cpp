@@ -105,7 +105,15 @@ TEST(Tree, NearestAndNeighboursAreEigensDistancesBitForBit) {
         if (i % 7 == 0)
             p = tree.node(i / 2).position;  // ties: the lowest index wins
         tree.add(std::max(0, i / 3), p, 0.0);
+        // Every size, odd and even: the query ties two nodes, one of them possibly the last.
+        const Eigen::Vector3d q = i % 2 == 0 ? p : tree.node(i / 4).position;
+        int first = -1;
+        for (int k = 0; k < tree.size() && first < 0; ++k)
+            if (tree.node(k).position == q)
+                first = k;
+        ASSERT_EQ(tree.nearest(q), first) << tree.size();
     }
+    EXPECT_EQ(tree.nearest(Eigen::Vector3d::Constant(std::nan(""))), -1);
     for (int q = 0; q < 2000; ++q) {
         const Eigen::Vector3d p = q % 5 == 0 ? tree.node(q % tree.size()).position
                                              : Eigen::Vector3d(u(rng), u(rng), u(rng));
