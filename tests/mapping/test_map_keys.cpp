@@ -49,7 +49,10 @@ TEST(OctreeAxisKey, IsOctomapsKeyOnAndOffCellBoundaries) {
     }
 }
 
-/** The unchecked index of points on the grid is the checked one; rays test their ends only. */
+/**
+ * The unchecked index of points on the grid (either floor) is the checked one; rays test their
+ * ends only.
+ */
 TEST(DenseGridIndex, OnGridIsTheCheckedIndexAndRaysBetweenOnGridEndsStayOnIt) {
     const DenseGridIndex grid(1.0 / 0.2, {-60, -45, -3}, {120, 90, 25});
     std::mt19937 rng(3);
@@ -60,6 +63,7 @@ TEST(DenseGridIndex, OnGridIsTheCheckedIndexAndRaysBetweenOnGridEndsStayOnIt) {
         if (grid(p) >= 0) {
             ++onGrid;
             ASSERT_EQ(grid.onGrid(p), grid(p));
+            ASSERT_EQ(grid.onGridFloored(p), grid(p));
         }
         const Eigen::Vector3d d = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
         const Eigen::Vector3d first = p + 0.1 * d, last = p + 4.9 * d;
@@ -70,8 +74,17 @@ TEST(DenseGridIndex, OnGridIsTheCheckedIndexAndRaysBetweenOnGridEndsStayOnIt) {
             const Eigen::Vector3d s = p + (k + 0.5) * 0.2 * d;
             ASSERT_GE(grid(s), 0);
             ASSERT_EQ(grid.onGrid(s), grid(s));
+            ASSERT_EQ(grid.onGridFloored(s), grid(s));
         }
     }
+    // On and beside the cells' faces, where the two floors could part.
+    for (int i = -59; i < 59; ++i)
+        for (const double c :
+             {i * 0.2, std::nextafter(i * 0.2, -1e9), std::nextafter(i * 0.2, 1e9)}) {
+            const Eigen::Vector3d p(c, 0.5 * c, 0.05 * c);
+            if (grid(p) >= 0)
+                ASSERT_EQ(grid.onGridFloored(p), grid(p)) << c;
+        }
     EXPECT_GT(onGrid, 5000);
     EXPECT_GT(rays, 2000);
     const Eigen::Vector3d edge(-12.0, -9.0, -0.6);  // the lowest corner: on the grid

@@ -126,7 +126,8 @@ double GainEvaluator::columnGain(const mapping::ExplorationMap& map, const Eigen
     return occluders ? occluded : open;
 }
 
-std::pair<double, double> GainEvaluator::columnGains(
+template <bool kFloored>
+__attribute__((always_inline)) inline std::pair<double, double> GainEvaluator::columnGainsOn(
     const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
     const std::vector<BodyOccluder>* occluders) const {
     const Aabb& box = map.explorationBox();
@@ -162,13 +163,29 @@ std::pair<double, double> GainEvaluator::columnGains(
         };
         // A ray whose first and last samples lie on the map's dense grid lies on it whole.
         if (shells > 0 && map.onGrid(p + radii[0] * dir) && map.onGrid(p + radii[shells - 1] * dir))
-            march([&map](const Eigen::Vector3d& s) { return map.stateOnGrid(s); });
+            march([&map](const Eigen::Vector3d& s) {
+                return kFloored ? map.stateOnGridFloored(s) : map.stateOnGrid(s);
+            });
         else
             march([&map](const Eigen::Vector3d& s) { return map.state(s); });
         gain += cubature_.ringWeights[j] * ray;
         occludedGain += cubature_.ringWeights[j] * (stoppedByBody ? occludedRay : ray);
     }
     return {gain, occludedGain};
+}
+
+std::pair<double, double> GainEvaluator::columnGains(
+    const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
+    const std::vector<BodyOccluder>* occluders) const {
+    static const bool hasSse41 = __builtin_cpu_supports("sse4.1");
+    return hasSse41 ? columnGainsSse41(map, p, column, occluders)
+                    : columnGainsOn<false>(map, p, column, occluders);
+}
+
+std::pair<double, double> GainEvaluator::columnGainsSse41(
+    const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
+    const std::vector<BodyOccluder>* occluders) const {
+    return columnGainsOn<true>(map, p, column, occluders);
 }
 
 std::vector<double> GainEvaluator::columns(const mapping::ExplorationMap& map,

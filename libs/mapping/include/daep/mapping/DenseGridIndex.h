@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace daep::mapping {
@@ -54,6 +55,17 @@ struct DenseGridIndex {
         std::array<int, 3> i{};
         for (std::size_t a = 0; a < 3; ++a)
             i[a] = floorToInt(p[Eigen::Index(a)] * scale) - low[a];
+        return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
+    }
+
+    /**
+     * onGrid(p) through std::floor, the same index: in code built for SSE4.1 the floor is one
+     * instruction (roundsd) where floorToInt takes four.
+     */
+    std::int64_t onGridFloored(const Eigen::Vector3d& p) const {
+        std::array<int, 3> i{};
+        for (std::size_t a = 0; a < 3; ++a)
+            i[a] = int(std::floor(p[Eigen::Index(a)] * scale)) - low[a];
         return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
     }
 

@@ -104,6 +104,10 @@ public:
     CellState stateOnGrid(const Eigen::Vector3d& p) const {
         return CellState(gridCells_[gridIndex_.onGrid(p)]);
     }
+    /** stateOnGrid(p) through DenseGridIndex::onGridFloored. */
+    CellState stateOnGridFloored(const Eigen::Vector3d& p) const {
+        return CellState(gridCells_[gridIndex_.onGridFloored(p)]);
+    }
     bool isFree(const Eigen::Vector3d& p) const { return state(p) == CellState::Free; }
     bool isOccupied(const Eigen::Vector3d& p) const { return state(p) == CellState::Occupied; }
     bool isUnknown(const Eigen::Vector3d& p) const { return state(p) == CellState::Unknown; }

@@ -136,6 +136,14 @@ private:
     std::pair<double, double> columnGains(const mapping::ExplorationMap& map,
                                           const Eigen::Vector3d& p, int column,
                                           const std::vector<BodyOccluder>* occluders) const;
+    /** columnGains in code built for SSE4.1, where the machine has it: the same sums. */
+    __attribute__((target("sse4.1"))) std::pair<double, double> columnGainsSse41(
+        const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
+        const std::vector<BodyOccluder>* occluders) const;
+    template <bool kFloored>
+    std::pair<double, double> columnGainsOn(const mapping::ExplorationMap& map,
+                                            const Eigen::Vector3d& p, int column,
+                                            const std::vector<BodyOccluder>* occluders) const;
     double yawAngleBoost(const Aabb& box, const Eigen::Vector3d& s) const;
     template <class ColumnFn>
     double window(double yaw, const ColumnFn& columnGainOf) const;
