@@ -43,7 +43,7 @@ struct DenseGridIndex {
                 return -1;
             i[a] = floorToInt(v) - low[a];
         }
-        return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
+        return linear(i);
     }
 
     /**
@@ -55,7 +55,7 @@ struct DenseGridIndex {
         std::array<int, 3> i{};
         for (std::size_t a = 0; a < 3; ++a)
             i[a] = floorToInt(p[Eigen::Index(a)] * scale) - low[a];
-        return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
+        return linear(i);
     }
 
     /**
@@ -66,10 +66,15 @@ struct DenseGridIndex {
         std::array<int, 3> i{};
         for (std::size_t a = 0; a < 3; ++a)
             i[a] = int(std::floor(p[Eigen::Index(a)] * scale)) - low[a];
-        return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
+        return linear(i);
     }
 
 private:
+    /** The index of grid cell i (x fastest). */
+    std::int64_t linear(const std::array<int, 3>& i) const {
+        return i[0] + std::int64_t(dims[0]) * (i[1] + std::int64_t(dims[1]) * i[2]);
+    }
+
     std::array<double, 3> lowBound_{}, highBound_{};  ///< low and high, converted once
 };
 
