@@ -179,9 +179,10 @@ TEST_F(RawlogCorruption, ImageSizesBeyondMemoryAreExitOneBeforeAnythingIsAllocat
         expectCleanOutcome(o, p, true);
         EXPECT_NE(o.err.find("corrupt rawlog: object 4 (after 0 depth frames)"), std::string::npos)
             << o.err;
-        if (byte == 2 || byte == 6)
+        if (byte == 2 || byte == 6) {
             EXPECT_NE(o.err.find("declares more data than memory holds"), std::string::npos)
                 << o.err;
+        }
     }
     // Found by fuzz_rawlog: a range image of 3.7e18 bytes in a file of its own.
     const fs::path found = fs::path(DAEP_SOURCE_DIR) / "tests/fuzz/regressions/rawlog" /

@@ -82,8 +82,9 @@ TEST(DenseGridIndex, OnGridIsTheCheckedIndexAndRaysBetweenOnGridEndsStayOnIt) {
         for (const double c :
              {i * 0.2, std::nextafter(i * 0.2, -1e9), std::nextafter(i * 0.2, 1e9)}) {
             const Eigen::Vector3d p(c, 0.5 * c, 0.05 * c);
-            if (grid(p) >= 0)
+            if (grid(p) >= 0) {
                 ASSERT_EQ(grid.onGridFloored(p), grid(p)) << c;
+            }
         }
     EXPECT_GT(onGrid, 5000);
     EXPECT_GT(rays, 2000);

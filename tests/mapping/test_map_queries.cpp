@@ -471,8 +471,9 @@ TEST_F(FreeBlockMap, AFreeCellPathTakesTheFewestFaceStepsThroughTheDoorway) {
     bool throughTheDoor = false;
     for (std::size_t k = 1; k < path.size(); ++k) {
         EXPECT_TRUE(map_.isFree(path[k]) && usable(path[k])) << path[k].transpose();
-        if (k > 1)
+        if (k > 1) {
             EXPECT_NEAR((path[k] - path[k - 1]).norm(), kRes, 1e-9) << k;
+        }
         throughTheDoor = throughTheDoor || (std::abs(path[k].x() - 1.9) < 0.05);
     }
     EXPECT_TRUE(throughTheDoor);
