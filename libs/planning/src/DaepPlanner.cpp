@@ -332,6 +332,25 @@ std::optional<double> DaepPlanner::escapeUpHeight() const {
     return height;
 }
 
+namespace {
+
+/**
+ * The point straight above `from` at `height`: when there is a height, it is above `from`, and
+ * the climb is `flyable`.
+ */
+template <typename Flyable>
+std::optional<Eigen::Vector3d> straightUp(const Eigen::Vector3d& from, std::optional<double> height,
+                                          const Flyable& flyable) {
+    if (!height || !(*height > from.z()))
+        return std::nullopt;
+    const Eigen::Vector3d up(from.x(), from.y(), *height);
+    if (!flyable(up))
+        return std::nullopt;
+    return up;
+}
+
+}  // namespace
+
 template <typename Visit>
 void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen::Vector3d& from,
                                     Visit&& visit, bool throughImprints) const {
@@ -353,12 +372,10 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
         return throughImprints ? flyableThroughImprints(to)
                                : segmentFlyable(map, from, to, r, h, leavingBlocked);
     };
-    if (const std::optional<double> high = overHeadsHeight(); high && *high > from.z()) {
-        // Straight up, over the heads: there nobody, seen or not, can reach the drone.
-        const Eigen::Vector3d up(from.x(), from.y(), *high);
-        if (flyable(up) && !visit(up, context.pose.yaw, 0.0))
-            return;
-    }
+    // Straight up, over the heads: there nobody, seen or not, can reach the drone.
+    if (const std::optional<Eigen::Vector3d> up = straightUp(from, overHeadsHeight(), flyable);
+        up && !visit(*up, context.pose.yaw, 0.0))
+        return;
     for (const double distance : {0.4, 0.8, 1.2, 1.6}) {
         for (int k = 0; k < 16; ++k) {
             for (const double dz : {0.0, 0.4, -0.4}) {
@@ -376,16 +393,12 @@ void DaepPlanner::forEachEscapeGoal(const PlanningContext& context, const Eigen:
 
 std::optional<Eigen::Vector3d> DaepPlanner::escapeUpGoal(const PlanningContext& context) const {
     const Eigen::Vector3d& from = context.pose.position;
-    const std::optional<double> high = escapeUpHeight();
-    if (!high || *high <= from.z())
-        return std::nullopt;
     const mapping::ExplorationMap& map = *context.map;
     const double r = params().robotRadius;
-    const Eigen::Vector3d up(from.x(), from.y(), *high);
-    if (!segmentFlyable(map, from, up, r, params().bodyHalfHeight,
-                        !map.isSegmentFree(from, from, r)))
-        return std::nullopt;
-    return up;
+    return straightUp(from, escapeUpHeight(), [&](const Eigen::Vector3d& up) {
+        return segmentFlyable(map, from, up, r, params().bodyHalfHeight,
+                              !map.isSegmentFree(from, from, r));
+    });
 }
 
 bool DaepPlanner::isTrap(const PlanningContext& context, const Eigen::Vector3d& stop,
