@@ -82,18 +82,19 @@ int Tree::nearest(const Eigen::Vector3d& p) const {
     _mm_store_pd(indices, indexA);
     _mm_store_pd(indices + 2, indexB);
     int best = -1;
-    double nearest = std::numeric_limits<double>::infinity();
+    double bestDistance = std::numeric_limits<double>::infinity();
     for (int lane = 0; lane < 4; ++lane) {
         const int i = int(indices[lane]);
-        if (i >= 0 && (distances[lane] < nearest || (distances[lane] == nearest && i < best))) {
+        if (i >= 0 &&
+            (distances[lane] < bestDistance || (distances[lane] == bestDistance && i < best))) {
             best = i;
-            nearest = distances[lane];
+            bestDistance = distances[lane];
         }
     }
     for (int i = int(4 * quads); i < size(); ++i) {
         const double d = squaredDistance(i, p);
-        if (d < nearest) {
-            nearest = d;
+        if (d < bestDistance) {
+            bestDistance = d;
             best = i;
         }
     }
