@@ -491,5 +491,42 @@ TEST_F(FreeBlockMap, NoFreeCellPathWhenTheWallIsClosedOrNoCellIsAGoal) {
     EXPECT_EQ(map_.freeCellPath({0.5, 0.5, 0.5}, anywhere, anywhere).size(), 2u);
 }
 
+/**
+ * A corridor box 12 x 2 x 1 m whose cells and those around its sides are made free from
+ * x = `knownFrom` to its east end (12 m, where the rays end on an occupied layer outside the
+ * box); west of knownFrom it stays unknown, so its frontier cells lie at x = knownFrom.
+ */
+void seeCorridorFrom(ExplorationMap& map, double knownFrom) {
+    for (double y = -0.3; y < 2.4; y += kRes)
+        for (double z = -0.3; z < 1.4; z += kRes)
+            map.insertPointCloud({knownFrom + 0.1, y, z},
+                                 {Eigen::Vector3f(12.1f, float(y), float(z))});
+}
+
+ExplorationMap corridorMap() {
+    MapParams p;
+    p.maxRange = 15.0;
+    Aabb b;
+    b.min = {0, 0, 0};
+    b.max = {12, 2, 1};
+    return ExplorationMap(p, b);
+}
+
+TEST(MayMeetUnknown, OnlyWithinRangeOfAFrontierCellOrBesideAnUnknownOne) {
+    ExplorationMap map = corridorMap();
+    const Eigen::Vector3d east(10.1, 1.1, 0.5), middle(3.1, 1.1, 0.5);
+    EXPECT_TRUE(map.mayMeetUnknown(east, 5.0));  // all unknown
+    seeCorridorFrom(map, 6.0);
+    EXPECT_TRUE(map.mayMeetUnknown(east, 5.0));               // the frontier 4 m west
+    EXPECT_FALSE(map.mayMeetUnknown(east, 2.0));              // beyond a 2 m march (and its block)
+    EXPECT_TRUE(map.mayMeetUnknown(middle, 0.05));            // in the unknown: its first sample
+    EXPECT_TRUE(map.mayMeetUnknown({40.0, 1.1, 0.5}, 0.05));  // off the grid: unsure
+    // Known further west, the blocks that held the frontier are asked again.
+    seeCorridorFrom(map, 0.0);
+    EXPECT_FALSE(map.mayMeetUnknown(east, 5.0));
+    EXPECT_FALSE(map.mayMeetUnknown(middle, 0.05));
+    EXPECT_TRUE(map.mayMeetUnknown(middle, 5.0));  // the west end's face, 3 m away
+}
+
 }  // namespace
 }  // namespace daep::mapping

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "PlanningTestUtil.h"
 #include "daep/common/Error.h"
@@ -162,6 +163,158 @@ TEST(GainEvaluator, WindowOverColumnsMatchesDirectEvaluation) {
     for (int deg = -179; deg <= 180; ++deg) {
         EXPECT_LE(g.windowGain(cols, deg * kDeg), best.gain + 1e-12);
     }
+}
+
+/**
+ * Box 0..16 x 0..4 x 0..2 (and the dense grid around it) known free west of x = 8, with a
+ * wall in the layer at x = 8.0-8.2 and the unknown behind it; through an opening where y >= 2,
+ * known free out to x = 10, unknown beyond.
+ */
+std::unique_ptr<mapping::ExplorationMap> wallAndOpening(bool opening = true) {
+    auto map = makeMap(box(0, 0, 0, 16, 4, 2), 15.0);
+    for (double y = -0.3; y < 4.4; y += 0.2)
+        for (double z = -0.3; z < 2.4; z += 0.2) {
+            const float fy = float(y), fz = float(z);
+            if (y < 2.0 || !opening) {
+                map->insertPointCloud({7.9, y, z}, {Eigen::Vector3f(-100.f, fy, fz)});
+                map->insertPointCloud({7.9, y, z}, {Eigen::Vector3f(8.1f, fy, fz)});
+            } else {
+                map->insertPointCloud({9.9, y, z}, {Eigen::Vector3f(-100.f, fy, fz)});
+            }
+        }
+    return map;
+}
+
+/** What expectSameGainsAsTheMarch met. */
+struct SkipCounts {
+    int skipped = 0;  ///< points where mayMeetUnknown is false
+    int seeing = 0;   ///< (point, yaw) pairs whose march saw unknown volume
+};
+
+/**
+ * columns() answers 0 without marching where no ray can meet an unknown cell
+ * (mayMeetUnknown); gainAtYaw marches every column. They must agree bit for bit at each point.
+ */
+SkipCounts expectSameGainsAsTheMarch(const mapping::ExplorationMap& map, const GainEvaluator& g,
+                                     const std::vector<Eigen::Vector3d>& points) {
+    SkipCounts counts;
+    for (const Eigen::Vector3d& p : points) {
+        counts.skipped += !map.mayMeetUnknown(p, g.params().range);
+        const std::vector<double> columns = g.columns(map, p);
+        for (double yaw : {0.0, 1.2, 2.9, -2.0}) {
+            const double marched = g.gainAtYaw(map, p, yaw);
+            counts.seeing += marched > 0.0;
+            EXPECT_EQ(g.windowGain(columns, yaw), marched) << p.transpose() << " yaw " << yaw;
+        }
+    }
+    return counts;
+}
+
+TEST(GainEvaluator, ViewsWithNoUnknownCellInReachAreZeroWithoutTheMarch) {
+    // Far from the unknown, before the wall, at the opening and deep in the unknown.
+    const auto map = wallAndOpening();
+    GainParams params;
+    params.range = 1.0;
+    std::vector<Eigen::Vector3d> points;
+    for (double x = 0.3; x < 16.0; x += 0.35)
+        for (double y = 0.3; y < 3.8; y += 0.35)
+            for (double z : {0.5, 1.0, 1.5})
+                points.emplace_back(x, y, z);
+    const SkipCounts counts = expectSameGainsAsTheMarch(*map, GainEvaluator{params}, points);
+    EXPECT_GT(counts.skipped, 300);
+    EXPECT_GT(counts.seeing, 300);
+}
+
+TEST(GainEvaluator, ViewsSkippedInAClutteredMapAgreeWithTheMarch) {
+    // Short random rays leave every arrangement of free, occupied and unknown cells, diagonal
+    // steps from free into the unknown among them.
+    auto map = makeMap(box(0, 0, 0, 6, 6, 2), 1.5);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> x(0.0, 6.0), z(0.0, 2.0), step(-2.5, 2.5);
+    for (int frame = 0; frame < 400; ++frame) {
+        const Eigen::Vector3d eye(x(rng), x(rng), z(rng));
+        std::vector<Eigen::Vector3f> ends;
+        for (int k = 0; k < 60; ++k)
+            ends.push_back((eye + Eigen::Vector3d(step(rng), step(rng), step(rng))).cast<float>());
+        map->insertPointCloud(eye, ends);
+    }
+    GainParams params;
+    params.range = 0.6;
+    std::vector<Eigen::Vector3d> points;
+    for (int k = 0; k < 3000; ++k)
+        points.emplace_back(x(rng), x(rng), z(rng));
+    const SkipCounts counts = expectSameGainsAsTheMarch(*map, GainEvaluator{params}, points);
+    EXPECT_GT(counts.skipped, 500);
+    EXPECT_GT(counts.seeing, 50);
+}
+
+TEST(GainEvaluator, RaysWhoseStepsSkipCellsAreAlwaysMarched) {
+    // Steps of 0.45 m jump the wall's 0.2 m layer into the unknown behind it, where no free
+    // cell is beside an unknown one: the march sees it, so columns() must march too.
+    const auto map = wallAndOpening(false);
+    GainParams params;
+    params.range = 1.0;
+    params.dr = 0.45;
+    std::vector<Eigen::Vector3d> points;
+    for (double x = 6.0; x < 8.0; x += 0.05)
+        points.emplace_back(x, 1.0, 1.0);
+    const SkipCounts counts = expectSameGainsAsTheMarch(*map, GainEvaluator{params}, points);
+    EXPECT_GT(counts.skipped, 10);
+    EXPECT_GT(counts.seeing, 10);
+}
+
+TEST(GainEvaluator, AnUnknownCellReachedOnlyAcrossItsEdgesCountsAsSeen) {
+    // Every cell of the dense grid known free, one by one (a ray cut at 15 cm from a cell's
+    // centre clears that cell only), but for an unknown cell whose six face neighbours are
+    // occupied: rays reach it only from free cells beside its edges and corners, which must make it
+    // a frontier cell.
+    auto map = makeMap(box(0, 0, 0, 2, 2, 2), 0.15);
+    const Eigen::Vector3i unknown(10, 10, 10);  // the grid starts 1 m out: the cell at 1.1 m
+    const auto centre = [](const Eigen::Vector3i& c) {
+        return Eigen::Vector3d(-0.9 + 0.2 * c.x(), -0.9 + 0.2 * c.y(), -0.9 + 0.2 * c.z());
+    };
+    for (int cz = 0; cz < 20; ++cz)
+        for (int cy = 0; cy < 20; ++cy)
+            for (int cx = 0; cx < 20; ++cx) {
+                const Eigen::Vector3i c(cx, cy, cz);
+                const int away = (c - unknown).cwiseAbs().sum();
+                const Eigen::Vector3d o = centre(c);
+                if (away == 1)
+                    map->insertPointCloud(o, {o.cast<float>()});
+                else if (away > 1)
+                    map->insertPointCloud(
+                        o, {Eigen::Vector3f(float(o.x()) + 9.f, float(o.y()), float(o.z()))});
+            }
+    ASSERT_TRUE(map->isUnknown(centre(unknown)));
+    ASSERT_TRUE(map->isOccupied(centre(unknown + Eigen::Vector3i(1, 0, 0))));
+    ASSERT_TRUE(map->isFree(centre(unknown + Eigen::Vector3i(1, 1, 0))));
+    GainParams params;
+    params.range = 1.0;
+    // On the diagonal through the cell's lower vertical edge, so that the rays along the 45
+    // degree column step from the free cell behind the edge straight into the unknown one.
+    std::vector<Eigen::Vector3d> points;
+    const Eigen::Vector3d edge = centre(unknown) - Eigen::Vector3d(0.1, 0.1, 0.0);
+    for (double s = 0.05; s < 0.95; s += 0.01)
+        points.push_back(edge - s * Eigen::Vector3d(M_SQRT1_2, M_SQRT1_2, 0.0));
+    const SkipCounts counts = expectSameGainsAsTheMarch(*map, GainEvaluator{params}, points);
+    EXPECT_GT(counts.seeing, 20) << counts.seeing;
+}
+
+/** Box 0..8 x 0..4 x 0..4.1: its top cells (4.0-4.2) reach above it and stay unknown. */
+TEST(GainEvaluator, UnknownCellsTheBoxCutsThroughCountAsSeen) {
+    auto map = makeMap(box(0, 0, 0, 8, 4, 4.1), 15.0);
+    for (double y = -0.3; y < 4.4; y += 0.2)
+        for (double z = -0.3; z < 4.0; z += 0.2)
+            map->insertPointCloud({9.9, y, z}, {Eigen::Vector3f(-100.f, float(y), float(z))});
+    GainParams params;
+    params.range = 1.0;
+    std::vector<Eigen::Vector3d> points;
+    for (double x = 0.3; x < 8.0; x += 0.5)
+        for (double z = 0.1; z < 4.1; z += 0.1)
+            points.emplace_back(x, 2.0, z);
+    const SkipCounts counts = expectSameGainsAsTheMarch(*map, GainEvaluator{params}, points);
+    EXPECT_GT(counts.skipped, 50);
+    EXPECT_GT(counts.seeing, 50);
 }
 
 TEST(GainParams, ReadsDegreesAndRejectsBadValues) {

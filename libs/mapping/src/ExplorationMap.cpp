@@ -59,9 +59,12 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
         dims[a] = int(kHi[a]) - int(kLo[a]) + 1;
         total *= dims[a];
         inBox[a].resize(std::size_t(dims[a]));
+        touchesBox[a].resize(std::size_t(dims[a]));
+        const double half = 0.5 * tree.getResolution() * (1.0 + 1e-6);
         for (int i = 0; i < dims[a]; ++i) {
             const double c = tree.keyToCoord(octomap::key_type(kLo[a] + i));
             inBox[a][std::size_t(i)] = c >= box.min[a] && c < box.max[a];
+            touchesBox[a][std::size_t(i)] = c + half >= box.min[a] && c - half <= box.max[a];
         }
     }
     const int keyOfZero = tree.coordToKey(0.0);
@@ -81,6 +84,12 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
     passWords = (dims[0] + 63) / 64;
     passBits.assign(rows * std::size_t(passWords), 0);
     passStale.assign(rows, 1);
+    std::size_t blockCount = 1;
+    for (std::size_t a = 0; a < 3; ++a) {
+        blockDims[a] = ((dims[a] - 1) >> kBlockShift) + 1;
+        blockCount *= std::size_t(blockDims[a]);
+    }
+    blocks.assign(blockCount, kBlockStale);
 }
 
 CellState ExplorationMap::Impl::treeState(const octomap::OcTreeKey& key) const {
@@ -222,6 +231,8 @@ bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) 
     f |= std::uint8_t(hit ? kEverHit : 0);
     if (cell != before || (f & kEverHit) != hitBefore)
         passCellChanged(i);
+    if (cell != before)
+        frontierCellChanged(i);
     return newlyKnown;
 }
 

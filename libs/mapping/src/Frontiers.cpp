@@ -131,4 +131,95 @@ std::vector<Eigen::Vector3d> ExplorationMap::freeCellPath(
     return path;
 }
 
+bool ExplorationMap::Impl::isFrontierCell(int x, int y, int z) const {
+    const auto at = [this](int cx, int cy, int cz) {
+        return cells[std::size_t(cx + std::int64_t(dims[0]) * (cy + std::int64_t(dims[1]) * cz))];
+    };
+    if (at(x, y, z) != std::uint8_t(CellState::Unknown) || !touchesBox[0][std::size_t(x)] ||
+        !touchesBox[1][std::size_t(y)] || !touchesBox[2][std::size_t(z)])
+        return false;
+    for (int cz = std::max(z - 1, 0); cz <= std::min(z + 1, dims[2] - 1); ++cz)
+        for (int cy = std::max(y - 1, 0); cy <= std::min(y + 1, dims[1] - 1); ++cy)
+            for (int cx = std::max(x - 1, 0); cx <= std::min(x + 1, dims[0] - 1); ++cx)
+                if (at(cx, cy, cz) == std::uint8_t(CellState::Free))
+                    return true;
+    return false;
+}
+
+bool ExplorationMap::Impl::blockHasFrontier(int bx, int by, int bz) const {
+    std::uint8_t& block = blocks[std::size_t(bx + std::int64_t(blockDims[0]) *
+                                                      (by + std::int64_t(blockDims[1]) * bz))];
+    if (!(block & kBlockStale))
+        return block & kBlockHasFrontier;
+    const auto span = [this](int b, std::size_t a) {
+        return std::make_pair(b << kBlockShift, std::min((b + 1) << kBlockShift, dims[a]));
+    };
+    const auto [x0, x1] = span(bx, 0);
+    const auto [y0, y1] = span(by, 1);
+    const auto [z0, z1] = span(bz, 2);
+    block = 0;
+    for (int z = z0; z < z1; ++z)
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+                if (isFrontierCell(x, y, z)) {
+                    block = kBlockHasFrontier;
+                    return true;
+                }
+    return false;
+}
+
+void ExplorationMap::Impl::frontierCellChanged(std::int64_t i) {
+    const std::array<int, 3> c{int(i % dims[0]), int(i / dims[0] % dims[1]),
+                               int(i / (std::int64_t(dims[0]) * dims[1]))};
+    std::array<int, 3> lo{}, hi{};
+    for (std::size_t a = 0; a < 3; ++a) {
+        lo[a] = std::max(c[a] - 1, 0) >> kBlockShift;
+        hi[a] = std::min(c[a] + 1, dims[a] - 1) >> kBlockShift;
+    }
+    for (int bz = lo[2]; bz <= hi[2]; ++bz)
+        for (int by = lo[1]; by <= hi[1]; ++by)
+            for (int bx = lo[0]; bx <= hi[0]; ++bx)
+                blocks[std::size_t(bx + std::int64_t(blockDims[0]) *
+                                            (by + std::int64_t(blockDims[1]) * bz))] |= kBlockStale;
+}
+
+bool ExplorationMap::mayMeetUnknown(const Eigen::Vector3d& p, double range) const {
+    const Impl& m = *impl_;
+    if (gridIndex_(p) < 0)
+        return true;
+    // Grid coordinates of the cell holding v on axis a, clamped to the grid.
+    const auto cellOf = [&m](double v, std::size_t a) {
+        const int c = floorToInt(v * m.pointIndex.scale) - m.pointIndex.low[a];
+        return std::clamp(c, 0, m.dims[a] - 1);
+    };
+    std::array<int, 3> lo{}, hi{};
+    for (std::size_t a = 0; a < 3; ++a) {
+        const int own = cellOf(p[Eigen::Index(a)], a);
+        lo[a] = std::max(own - 1, 0);
+        hi[a] = std::min(own + 1, m.dims[a] - 1);
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+        for (int y = lo[1]; y <= hi[1]; ++y)
+            for (int x = lo[0]; x <= hi[0]; ++x)
+                if (m.cells[std::size_t(x + std::int64_t(m.dims[0]) *
+                                                (y + std::int64_t(m.dims[1]) * z))] ==
+                    std::uint8_t(CellState::Unknown))
+                    return true;
+    // The samples lie in the box and within range: the blocks of their cells, grown by a cell
+    // for rounding.
+    for (std::size_t a = 0; a < 3; ++a) {
+        const Eigen::Index e = Eigen::Index(a);
+        lo[a] = std::max(cellOf(std::max(p[e] - range, box_.min[e]), a) - 1, 0);
+        hi[a] = std::min(cellOf(std::min(p[e] + range, box_.max[e]), a) + 1, m.dims[a] - 1);
+        lo[a] >>= Impl::kBlockShift;
+        hi[a] >>= Impl::kBlockShift;
+    }
+    for (int bz = lo[2]; bz <= hi[2]; ++bz)
+        for (int by = lo[1]; by <= hi[1]; ++by)
+            for (int bx = lo[0]; bx <= hi[0]; ++bx)
+                if (m.blockHasFrontier(bx, by, bz))
+                    return true;
+    return false;
+}
+
 }  // namespace daep::mapping

@@ -38,6 +38,9 @@ struct ExplorationMap::Impl {
     static constexpr std::uint8_t kMovedIn = 128;
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
+    /// Per axis, whether the cell with that key offset overlaps the box at all (its centre may
+    /// lie outside): where a point inside the box may fall.
+    std::array<std::vector<std::uint8_t>, 3> touchesBox;
 
     /// The frame's end cells, each once (marked kEndNow when added); scratch buffers reused
     /// between insertions.
@@ -141,6 +144,22 @@ struct ExplorationMap::Impl {
     void passCellChanged(std::int64_t i);
 
     bool keyInBox(const octomap::OcTreeKey& key) const;
+
+    /**
+     * Per block of 8 x 8 x 8 dense cells: whether it holds a frontier cell (unknown, with a free
+     * cell among its 26 neighbours). A block is worked out when it is asked for after a cell in
+     * it or beside it changed state.
+     */
+    static constexpr int kBlockShift = 3;
+    static constexpr std::uint8_t kBlockStale = 1, kBlockHasFrontier = 2;
+    std::array<int, 3> blockDims{};
+    mutable std::vector<std::uint8_t> blocks;
+    /** Whether block (bx, by, bz) holds a frontier cell. */
+    bool blockHasFrontier(int bx, int by, int bz) const;
+    /** Dense cell (x, y, z) is unknown with a free cell among its 26 neighbours. */
+    bool isFrontierCell(int x, int y, int z) const;
+    /** A dense cell's state changed: the blocks holding it or its neighbours are stale. */
+    void frontierCellChanged(std::int64_t i);
 
     /** Lower corner of the cell with this key along one axis. */
     double cellLow(octomap::key_type k) const {

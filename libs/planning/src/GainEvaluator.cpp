@@ -73,6 +73,20 @@ GainEvaluator::GainEvaluator(const GainParams& params) : params_(params) {
         });
     }
     sweepStart_.push_back(sweepTerms_.size());
+    double longestStep = cubature_.radii.empty() ? 0.0 : cubature_.radii.front();
+    for (std::size_t k = 1; k < cubature_.radii.size(); ++k)
+        longestStep = std::max(longestStep, cubature_.radii[k] - cubature_.radii[k - 1]);
+    double steepest = 0.0;
+    for (const Eigen::Vector3d& dir : cubature_.directions)
+        steepest = std::max(steepest, dir.cwiseAbs().maxCoeff());
+    longestAxisStep_ = longestStep * steepest;
+}
+
+bool GainEvaluator::seesNoUnknown(const mapping::ExplorationMap& map,
+                                  const Eigen::Vector3d& p) const {
+    // A margin far above rounding: a step of a whole cell could skip a cell.
+    return longestAxisStep_ < map.resolution() * (1.0 - 1e-6) &&
+           !map.mayMeetUnknown(p, params_.range);
 }
 
 double rayEntry(const BodyOccluder& body, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
@@ -192,6 +206,8 @@ std::vector<double> GainEvaluator::columns(const mapping::ExplorationMap& map,
                                            const Eigen::Vector3d& p,
                                            const std::vector<BodyOccluder>* occluders) const {
     std::vector<double> result(columns_);
+    if (seesNoUnknown(map, p))
+        return result;
     for (int i = 0; i < columns_; ++i)
         result[i] = columnGain(map, p, i, occluders);
     return result;
@@ -201,6 +217,8 @@ GainEvaluator::ColumnViews GainEvaluator::columnsOpenAndOccluded(
     const mapping::ExplorationMap& map, const Eigen::Vector3d& p,
     const std::vector<BodyOccluder>& occluders) const {
     ColumnViews views{std::vector<double>(columns_), std::vector<double>(columns_)};
+    if (seesNoUnknown(map, p))
+        return views;
     for (int i = 0; i < columns_; ++i)
         std::tie(views.open[i], views.occluded[i]) = columnGains(map, p, i, &occluders);
     return views;

@@ -174,6 +174,16 @@ public:
         int reach, double spacing, std::size_t maxViewpoints) const;
 
     /**
+     * Whether a march out of p could meet an unknown cell inside the box before an occupied
+     * one, when its samples lie within `range` of p and each is less than a cell from the one
+     * before on every axis (the first less than a cell from p): the first unknown sample is
+     * then next to p's cell, or a frontier cell (unknown, with a free cell among its 26
+     * neighbours). False is sure; true may be wrong. Blocks of the dense grid remember whether
+     * they hold a frontier cell, so the answer costs a few hundred lookups.
+     */
+    bool mayMeetUnknown(const Eigen::Vector3d& p, double range) const;
+
+    /**
      * The fewest face steps from `from` to a cell whose centre `isGoal` accepts, through the
      * cells frontierViewpoints walks (known free, inside the box, `usable` at the centre):
      * `from`, then the cells' centres. Empty when no such cell is reached. What a sampled

@@ -129,6 +129,12 @@ public:
     double phiMax() const { return cubature_.phiMax; }
 
 private:
+    /**
+     * No ray from p can sample an unknown cell (ExplorationMap::mayMeetUnknown), so every
+     * column is exactly 0; false when unsure, or when a sample step reaches a whole cell on
+     * some axis (then a ray could pass a cell by).
+     */
+    bool seesNoUnknown(const mapping::ExplorationMap& map, const Eigen::Vector3d& p) const;
     double columnGain(const mapping::ExplorationMap& map, const Eigen::Vector3d& p, int column,
                       const std::vector<BodyOccluder>* occluders = nullptr) const;
     /** A column's gain {open, occluded}: rays marched to the box, the occluded sum stopped at
@@ -164,6 +170,7 @@ private:
     int columns_ = 0;
     double columnWidth_ = 0.0;
     RayCubature cubature_;
+    double longestAxisStep_ = 0.0;  ///< longest move of a ray's sample on one axis, from p on
     double boostAlpha_ = 1.0;
     double boostDistance_ = 0.0;
 };
