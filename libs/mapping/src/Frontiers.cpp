@@ -132,9 +132,7 @@ std::vector<Eigen::Vector3d> ExplorationMap::freeCellPath(
 }
 
 bool ExplorationMap::Impl::isFrontierCell(int x, int y, int z) const {
-    const auto at = [this](int cx, int cy, int cz) {
-        return cells[std::size_t(cx + std::int64_t(dims[0]) * (cy + std::int64_t(dims[1]) * cz))];
-    };
+    const auto at = [this](int cx, int cy, int cz) { return cells[cellIndex(cx, cy, cz)]; };
     if (at(x, y, z) != std::uint8_t(CellState::Unknown) || !touchesBox[0][std::size_t(x)] ||
         !touchesBox[1][std::size_t(y)] || !touchesBox[2][std::size_t(z)])
         return false;
@@ -147,8 +145,7 @@ bool ExplorationMap::Impl::isFrontierCell(int x, int y, int z) const {
 }
 
 bool ExplorationMap::Impl::blockHasFrontier(int bx, int by, int bz) const {
-    std::uint8_t& block = blocks[std::size_t(bx + std::int64_t(blockDims[0]) *
-                                                      (by + std::int64_t(blockDims[1]) * bz))];
+    std::uint8_t& block = blocks[blockIndex(bx, by, bz)];
     if (!(block & kBlockStale))
         return block & kBlockHasFrontier;
     const auto span = [this](int b, std::size_t a) {
@@ -179,8 +176,7 @@ void ExplorationMap::Impl::frontierCellChanged(std::int64_t i) {
     for (int bz = lo[2]; bz <= hi[2]; ++bz)
         for (int by = lo[1]; by <= hi[1]; ++by)
             for (int bx = lo[0]; bx <= hi[0]; ++bx)
-                blocks[std::size_t(bx + std::int64_t(blockDims[0]) *
-                                            (by + std::int64_t(blockDims[1]) * bz))] |= kBlockStale;
+                blocks[blockIndex(bx, by, bz)] |= kBlockStale;
 }
 
 bool ExplorationMap::mayMeetUnknown(const Eigen::Vector3d& p, double range) const {
@@ -201,9 +197,7 @@ bool ExplorationMap::mayMeetUnknown(const Eigen::Vector3d& p, double range) cons
     for (int z = lo[2]; z <= hi[2]; ++z)
         for (int y = lo[1]; y <= hi[1]; ++y)
             for (int x = lo[0]; x <= hi[0]; ++x)
-                if (m.cells[std::size_t(x + std::int64_t(m.dims[0]) *
-                                                (y + std::int64_t(m.dims[1]) * z))] ==
-                    std::uint8_t(CellState::Unknown))
+                if (m.cells[m.cellIndex(x, y, z)] == std::uint8_t(CellState::Unknown))
                     return true;
     // The samples lie in the box and within range: the blocks of their cells, grown by a cell
     // for rounding.

@@ -154,6 +154,14 @@ struct ExplorationMap::Impl {
     static constexpr std::uint8_t kBlockStale = 1, kBlockHasFrontier = 2;
     std::array<int, 3> blockDims{};
     mutable std::vector<std::uint8_t> blocks;
+    std::size_t blockIndex(int bx, int by, int bz) const {
+        return std::size_t(bx +
+                           std::int64_t(blockDims[0]) * (by + std::int64_t(blockDims[1]) * bz));
+    }
+    /** The dense index of grid cell (x, y, z). */
+    std::size_t cellIndex(int x, int y, int z) const {
+        return std::size_t(x + std::int64_t(dims[0]) * (y + std::int64_t(dims[1]) * z));
+    }
     /** Whether block (bx, by, bz) holds a frontier cell. */
     bool blockHasFrontier(int bx, int by, int bz) const;
     /** Dense cell (x, y, z) is unknown with a free cell among its 26 neighbours. */
