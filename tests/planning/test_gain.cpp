@@ -225,6 +225,21 @@ TEST(GainEvaluator, ViewsWithNoUnknownCellInReachAreZeroWithoutTheMarch) {
     EXPECT_GT(counts.seeing, 300);
 }
 
+TEST(GainEvaluator, AFrontierNearTheEndOfTheRangeIsSeen) {
+    // Box 0..16 x 0..4 x 0..2 known east of x = 6, unknown west of it; the default 5 m range,
+    // from where the rays west see the unknown to their last samples.
+    auto map = makeMap(box(0, 0, 0, 16, 4, 2), 15.0);
+    for (double y = -0.3; y < 4.4; y += 0.2)
+        for (double z = -0.3; z < 2.4; z += 0.2)
+            map->insertPointCloud({6.1, y, z}, {Eigen::Vector3f(16.1f, float(y), float(z))});
+    std::vector<Eigen::Vector3d> points;
+    for (double x = 6.5; x < 15.5; x += 0.1)
+        points.emplace_back(x, 2.0, 1.0);
+    const SkipCounts counts = expectSameGainsAsTheMarch(*map, GainEvaluator{GainParams{}}, points);
+    EXPECT_GT(counts.skipped, 5);
+    EXPECT_GT(counts.seeing, 40);
+}
+
 TEST(GainEvaluator, ViewsSkippedInAClutteredMapAgreeWithTheMarch) {
     // Short random rays leave every arrangement of free, occupied and unknown cells, diagonal
     // steps from free into the unknown among them.

@@ -208,10 +208,21 @@ bool ExplorationMap::mayMeetUnknown(const Eigen::Vector3d& p, double range) cons
         lo[a] >>= Impl::kBlockShift;
         hi[a] >>= Impl::kBlockShift;
     }
+    // Blocks farther from p than the range (in cells, a cell more for rounding) hold no sample.
+    std::array<double, 3> u{};
+    for (std::size_t a = 0; a < 3; ++a)
+        u[a] = p[Eigen::Index(a)] * m.pointIndex.scale - m.pointIndex.low[a];
+    const double reach = range * m.pointIndex.scale + 2.0;
+    const auto gap = [&u](int b, std::size_t a) {
+        const double low = double(b << Impl::kBlockShift), high = low + (1 << Impl::kBlockShift);
+        const double d = std::max({low - u[a], 0.0, u[a] - high});
+        return d * d;
+    };
     for (int bz = lo[2]; bz <= hi[2]; ++bz)
         for (int by = lo[1]; by <= hi[1]; ++by)
             for (int bx = lo[0]; bx <= hi[0]; ++bx)
-                if (m.blockHasFrontier(bx, by, bz))
+                if (gap(bx, 0) + gap(by, 1) + gap(bz, 2) <= reach * reach &&
+                    m.blockHasFrontier(bx, by, bz))
                     return true;
     return false;
 }
