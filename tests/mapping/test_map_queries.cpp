@@ -516,11 +516,12 @@ TEST(MayMeetUnknown, OnlyWithinRangeOfAFrontierCellOrBesideAnUnknownOne) {
     ExplorationMap map = corridorMap();
     const Eigen::Vector3d east(10.1, 1.1, 0.5), middle(3.1, 1.1, 0.5);
     EXPECT_TRUE(map.mayMeetUnknown(east, 5.0));  // all unknown
-    seeCorridorFrom(map, 6.0);
-    EXPECT_TRUE(map.mayMeetUnknown(east, 5.0));               // the frontier 4 m west
-    EXPECT_FALSE(map.mayMeetUnknown(east, 2.0));              // beyond a 2 m march (and its block)
+    seeCorridorFrom(map, 7.0);  // its frontier cells (6.8-7.0) are the last of their blocks
+    EXPECT_TRUE(map.mayMeetUnknown(east, 5.0));               // the frontier 3 m west
+    EXPECT_FALSE(map.mayMeetUnknown(east, 2.0));              // beyond a 2 m march
     EXPECT_TRUE(map.mayMeetUnknown(middle, 0.05));            // in the unknown: its first sample
     EXPECT_TRUE(map.mayMeetUnknown({40.0, 1.1, 0.5}, 0.05));  // off the grid: unsure
+    EXPECT_TRUE(map.mayMeetUnknown({12.5, 1.1, 0.5}, 0.05));  // off the box: unsure
     // Known further west, the blocks that held the frontier are asked again.
     seeCorridorFrom(map, 0.0);
     EXPECT_FALSE(map.mayMeetUnknown(east, 5.0));

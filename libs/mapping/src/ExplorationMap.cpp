@@ -54,13 +54,13 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
         throw InputError("exploration box lies outside the octree's addressable range");
     }
     std::int64_t total = 1;
+    const double half = 0.5 * tree.getResolution() * (1.0 + 1e-6);  // touchesBox's tolerance
     for (int a = 0; a < 3; ++a) {
         gridMin[a] = kLo[a];
         dims[a] = int(kHi[a]) - int(kLo[a]) + 1;
         total *= dims[a];
         inBox[a].resize(std::size_t(dims[a]));
         touchesBox[a].resize(std::size_t(dims[a]));
-        const double half = 0.5 * tree.getResolution() * (1.0 + 1e-6);
         for (int i = 0; i < dims[a]; ++i) {
             const double c = tree.keyToCoord(octomap::key_type(kLo[a] + i));
             inBox[a][std::size_t(i)] = c >= box.min[a] && c < box.max[a];

@@ -181,7 +181,8 @@ void ExplorationMap::Impl::frontierCellChanged(std::int64_t i) {
 
 bool ExplorationMap::mayMeetUnknown(const Eigen::Vector3d& p, double range) const {
     const Impl& m = *impl_;
-    if (gridIndex_(p) < 0)
+    // From outside the box a ray may cross unknown cells there before it enters: unsure.
+    if (!box_.contains(p) || gridIndex_(p) < 0)
         return true;
     // Grid coordinates of the cell holding v on axis a, clamped to the grid.
     const auto cellOf = [&m](double v, std::size_t a) {
@@ -208,7 +209,7 @@ bool ExplorationMap::mayMeetUnknown(const Eigen::Vector3d& p, double range) cons
         lo[a] >>= Impl::kBlockShift;
         hi[a] >>= Impl::kBlockShift;
     }
-    // Blocks farther from p than the range (in cells, a cell more for rounding) hold no sample.
+    // Blocks farther from p than the range hold no sample (in cells, with two of slack).
     std::array<double, 3> u{};
     for (std::size_t a = 0; a < 3; ++a)
         u[a] = p[Eigen::Index(a)] * m.pointIndex.scale - m.pointIndex.low[a];

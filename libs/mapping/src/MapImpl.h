@@ -39,7 +39,8 @@ struct ExplorationMap::Impl {
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
     /// Per axis, whether the cell with that key offset overlaps the box at all (its centre may
-    /// lie outside): where a point inside the box may fall.
+    /// lie outside), with a tolerance far above rounding: where a point inside the box, or on
+    /// its face give or take rounding, may fall.
     std::array<std::vector<std::uint8_t>, 3> touchesBox;
 
     /// The frame's end cells, each once (marked kEndNow when added); scratch buffers reused

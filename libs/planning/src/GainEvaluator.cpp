@@ -73,7 +73,7 @@ GainEvaluator::GainEvaluator(const GainParams& params) : params_(params) {
         });
     }
     sweepStart_.push_back(sweepTerms_.size());
-    double longestStep = cubature_.radii.empty() ? 0.0 : cubature_.radii.front();
+    double longestStep = cubature_.radii.front();  // tileCount gives at least one shell
     for (std::size_t k = 1; k < cubature_.radii.size(); ++k)
         longestStep = std::max(longestStep, cubature_.radii[k] - cubature_.radii[k - 1]);
     double steepest = 0.0;

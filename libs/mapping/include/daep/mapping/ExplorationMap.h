@@ -174,12 +174,14 @@ public:
         int reach, double spacing, std::size_t maxViewpoints) const;
 
     /**
-     * Whether a march out of p could meet an unknown cell inside the box before an occupied
-     * one, when its samples lie within `range` of p and each is less than a cell from the one
-     * before on every axis (the first less than a cell from p): the first unknown sample is
-     * then next to p's cell, or a frontier cell (unknown, with a free cell among its 26
-     * neighbours). False is sure; true may be wrong. Blocks of the dense grid remember whether
-     * they hold a frontier cell, so the answer costs a few hundred lookups.
+     * Whether a march out of p (inside the box) could meet an unknown cell inside the box
+     * before an occupied one, when its samples lie within `range` of p and each is less than a
+     * cell from the one before on every axis (the first less than a cell from p): the first
+     * unknown sample is then next to p's cell, or a frontier cell (unknown, with a free cell
+     * among its 26 neighbours). False is sure; true may be wrong, and is the answer for p
+     * outside the box. Blocks of 8 x 8 x 8 cells remember whether they hold a frontier cell, so
+     * an answer costs a few hundred lookups, and a block changed since it was last asked is
+     * scanned again (512 cells and the neighbours of its unknown ones).
      */
     bool mayMeetUnknown(const Eigen::Vector3d& p, double range) const;
 
