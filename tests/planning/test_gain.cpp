@@ -247,21 +247,27 @@ TEST(GainEvaluator, ViewsSkippedInAClutteredMapAgreeWithTheMarch) {
     auto map = makeMap(box(0, 0, 0, 6, 6, 2), 1.5);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> x(0.0, 6.0), z(0.0, 2.0), step(-2.5, 2.5);
-    for (int frame = 0; frame < 400; ++frame) {
-        const Eigen::Vector3d eye(x(rng), x(rng), z(rng));
+    const auto inBox = [&] {  // drawn in this order whatever the compiler's argument order
+        const double px = x(rng), py = x(rng);
+        return Eigen::Vector3d(px, py, z(rng));
+    };
+    for (int frame = 0; frame < 250; ++frame) {
+        const Eigen::Vector3d eye = inBox();
         std::vector<Eigen::Vector3f> ends;
-        for (int k = 0; k < 60; ++k)
-            ends.push_back((eye + Eigen::Vector3d(step(rng), step(rng), step(rng))).cast<float>());
+        for (int k = 0; k < 60; ++k) {
+            const double dx = step(rng), dy = step(rng), dz = step(rng);
+            ends.push_back((eye + Eigen::Vector3d(dx, dy, dz)).cast<float>());
+        }
         map->insertPointCloud(eye, ends);
     }
     GainParams params;
     params.range = 0.6;
     std::vector<Eigen::Vector3d> points;
     for (int k = 0; k < 3000; ++k)
-        points.emplace_back(x(rng), x(rng), z(rng));
+        points.push_back(inBox());
     const SkipCounts counts = expectSameGainsAsTheMarch(*map, GainEvaluator{params}, points);
-    EXPECT_GT(counts.noUnknownInReach, 500);
-    EXPECT_GT(counts.seeing, 50);
+    EXPECT_GT(counts.noUnknownInReach, 100);
+    EXPECT_GT(counts.seeing, 100);
 }
 
 TEST(GainEvaluator, RaysWhoseStepsSkipCellsAreAlwaysMarched) {
