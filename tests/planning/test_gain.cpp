@@ -166,22 +166,35 @@ TEST(GainEvaluator, WindowOverColumnsMatchesDirectEvaluation) {
 }
 
 /**
+ * One ray along x, from x = `from` to `to`, through the middle of each cell row of the
+ * section y in [-0.3, 4.4), z in [-0.3, zEnd) that `keep(y)` accepts: a 4 m wide box and the
+ * dense grid's margin beside it. A row's ray changes no cell of another row.
+ */
+template <class Keep>
+void raysAlongX(mapping::ExplorationMap& map, double from, double to, double zEnd,
+                const Keep& keep) {
+    for (double y = -0.3; y < 4.4; y += 0.2)
+        for (double z = -0.3; z < zEnd; z += 0.2)
+            if (keep(y))
+                map.insertPointCloud({from, y, z},
+                                     {Eigen::Vector3f(float(to), float(y), float(z))});
+}
+
+void raysAlongX(mapping::ExplorationMap& map, double from, double to, double zEnd) {
+    raysAlongX(map, from, to, zEnd, [](double) { return true; });
+}
+
+/**
  * Box 0..16 x 0..4 x 0..2 (and the dense grid around it) known free west of x = 8, with a
  * wall in the layer at x = 8.0-8.2 and the unknown behind it; through an opening where y >= 2,
  * known free out to x = 10, unknown beyond.
  */
 std::unique_ptr<mapping::ExplorationMap> wallAndOpening(bool opening = true) {
     auto map = makeMap(box(0, 0, 0, 16, 4, 2), 15.0);
-    for (double y = -0.3; y < 4.4; y += 0.2)
-        for (double z = -0.3; z < 2.4; z += 0.2) {
-            const float fy = float(y), fz = float(z);
-            if (y < 2.0 || !opening) {
-                map->insertPointCloud({7.9, y, z}, {Eigen::Vector3f(-100.f, fy, fz)});
-                map->insertPointCloud({7.9, y, z}, {Eigen::Vector3f(8.1f, fy, fz)});
-            } else {
-                map->insertPointCloud({9.9, y, z}, {Eigen::Vector3f(-100.f, fy, fz)});
-            }
-        }
+    const auto walled = [opening](double y) { return y < 2.0 || !opening; };
+    raysAlongX(*map, 7.9, -100.0, 2.4, walled);
+    raysAlongX(*map, 7.9, 8.1, 2.4, walled);
+    raysAlongX(*map, 9.9, -100.0, 2.4, [&](double y) { return !walled(y); });
     return map;
 }
 
@@ -230,9 +243,7 @@ TEST(GainEvaluator, AFrontierNearTheEndOfTheRangeIsSeen) {
     // (6.8-7.0) are the last of their blocks. The default 5 m range, from where the rays west
     // see the unknown to their last samples.
     auto map = makeMap(box(0, 0, 0, 16, 4, 2), 15.0);
-    for (double y = -0.3; y < 4.4; y += 0.2)
-        for (double z = -0.3; z < 2.4; z += 0.2)
-            map->insertPointCloud({7.1, y, z}, {Eigen::Vector3f(16.1f, float(y), float(z))});
+    raysAlongX(*map, 7.1, 16.1, 2.4);
     std::vector<Eigen::Vector3d> points;
     for (double x = 7.5; x < 15.5; x += 0.1)
         points.emplace_back(x, 2.0, 1.0);
@@ -325,9 +336,7 @@ TEST(GainEvaluator, AnUnknownCellReachedOnlyAcrossItsEdgesCountsAsSeen) {
 /** Box 0..8 x 0..4 x 0..4.1: its top cells (4.0-4.2) reach above it and stay unknown. */
 TEST(GainEvaluator, UnknownCellsTheBoxCutsThroughCountAsSeen) {
     auto map = makeMap(box(0, 0, 0, 8, 4, 4.1), 15.0);
-    for (double y = -0.3; y < 4.4; y += 0.2)
-        for (double z = -0.3; z < 4.0; z += 0.2)
-            map->insertPointCloud({9.9, y, z}, {Eigen::Vector3f(-100.f, float(y), float(z))});
+    raysAlongX(*map, 9.9, -100.0, 4.0);
     GainParams params;
     params.range = 1.0;
     std::vector<Eigen::Vector3d> points;
