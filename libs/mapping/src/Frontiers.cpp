@@ -166,8 +166,7 @@ bool ExplorationMap::Impl::blockHasFrontier(int bx, int by, int bz) const {
 }
 
 void ExplorationMap::Impl::frontierCellChanged(std::int64_t i) {
-    const std::array<int, 3> c{int(i % dims[0]), int(i / dims[0] % dims[1]),
-                               int(i / (std::int64_t(dims[0]) * dims[1]))};
+    const std::array<int, 3> c = cellOfIndex(i);
     std::array<int, 3> lo{}, hi{};
     for (std::size_t a = 0; a < 3; ++a) {
         lo[a] = std::max(c[a] - 1, 0) >> kBlockShift;

@@ -71,6 +71,16 @@ struct ExplorationMap::Impl {
      */
     std::int64_t gridIndex(const Eigen::Vector3d& p) const { return pointIndex(p); }
 
+    /** The dense index of grid cell (x, y, z). */
+    std::size_t cellIndex(int x, int y, int z) const {
+        return std::size_t(x + std::int64_t(dims[0]) * (y + std::int64_t(dims[1]) * z));
+    }
+    /** The grid cell of a dense index (the inverse of cellIndex). */
+    std::array<int, 3> cellOfIndex(std::int64_t i) const {
+        const std::int64_t plane = std::int64_t(dims[0]) * dims[1];
+        return {int(i % dims[0]), int(i % plane / dims[0]), int(i / plane)};
+    }
+
     /** Dense index of key, or -1 when the key lies outside the dense grid. */
     std::int64_t gridIndex(const octomap::OcTreeKey& key) const {
         const int x = int(key[0]) - int(gridMin[0]);
@@ -79,15 +89,15 @@ struct ExplorationMap::Impl {
         if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) {
             return -1;
         }
-        return x + std::int64_t(dims[0]) * (y + std::int64_t(dims[1]) * z);
+        return std::int64_t(cellIndex(x, y, z));
     }
 
     /** The key of a dense index (the inverse of gridIndex). */
     octomap::OcTreeKey keyOfIndex(std::int64_t i) const {
-        const std::int64_t plane = std::int64_t(dims[0]) * dims[1];
-        return octomap::OcTreeKey(octomap::key_type(gridMin[0] + i % dims[0]),
-                                  octomap::key_type(gridMin[1] + i % plane / dims[0]),
-                                  octomap::key_type(gridMin[2] + i / plane));
+        const std::array<int, 3> c = cellOfIndex(i);
+        return octomap::OcTreeKey(octomap::key_type(gridMin[0] + c[0]),
+                                  octomap::key_type(gridMin[1] + c[1]),
+                                  octomap::key_type(gridMin[2] + c[2]));
     }
 
     Eigen::Vector3d cellCentre(std::int64_t i) const;
@@ -158,10 +168,6 @@ struct ExplorationMap::Impl {
     std::size_t blockIndex(int bx, int by, int bz) const {
         return std::size_t(bx +
                            std::int64_t(blockDims[0]) * (by + std::int64_t(blockDims[1]) * bz));
-    }
-    /** The dense index of grid cell (x, y, z). */
-    std::size_t cellIndex(int x, int y, int z) const {
-        return std::size_t(x + std::int64_t(dims[0]) * (y + std::int64_t(dims[1]) * z));
     }
     /** Whether block (bx, by, bz) holds a frontier cell. */
     bool blockHasFrontier(int bx, int by, int bz) const;
