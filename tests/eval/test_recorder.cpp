@@ -76,7 +76,7 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
         EXPECT_NE(summary.find(key), std::string::npos) << key;
     EXPECT_EQ(summary.find("reachable_percent"), std::string::npos);  // unset: not written
     EXPECT_EQ(readText(dir / "nested" / "collisions.csv"),
-              "person,start_s,end_s,tracked\n2,10.000,11.500,-1\n");
+              "person,start_s,end_s,tracked,unseen_watch\n2,10.000,11.500,-1,-\n");
     const std::string timing = readText(dir / "nested" / "timing.json");
     EXPECT_NE(timing.find("\"speedup_vs_real_time\": 50.00,"), std::string::npos) << timing;
     EXPECT_NE(timing.find("\"wall_time_by_stage_s\": {\"render\": 0.500, \"map\": 1.250}"),

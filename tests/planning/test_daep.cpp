@@ -638,6 +638,30 @@ TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
     }
 }
 
+TEST_F(DaepRoom, TheBlindWatchSaysWhetherSomeoneUnseenCouldBeAtAPlace) {
+    const Eigen::Vector2d walkway(0.5, 2.5), farFromIt(6.5, 2.5);
+    const std::vector<PersonForecast> nobody;
+    const std::unique_ptr<DaepPlanner> owned = guardedAfterAWalkerBehind(*map, root, "auto");
+    DaepPlanner& planner = *owned;
+    // Lost behind the drone at 4.25 s: they may be there still, and nobody is expected
+    // where nobody was ever seen.
+    EXPECT_EQ(planner.unseenWatchAt(walkway, 12.0), UnseenWatch::Open);
+    EXPECT_EQ(planner.unseenWatchAt(farFromIt, 12.0), UnseenWatch::NoWalkway);
+    EXPECT_STREQ(unseenWatchName(UnseenWatch::NoWalkway), "no_walkway");
+    // Turned to the walkway, the camera finds it empty: cleared until someone could walk in.
+    PlanningContext ctx = contextFor(*map, root, std::atan2(0.5, -1.5));
+    ctx.peopleFromCamera = true;
+    ctx.people = &nobody;
+    planner.keepFlying(ctx, Plan{}, 0);
+    EXPECT_EQ(planner.unseenWatchAt(walkway, ctx.time), UnseenWatch::Cleared);
+    EXPECT_STREQ(unseenWatchName(UnseenWatch::Cleared), "cleared");
+    // People from ground truth: the guard is off, and so is its watch.
+    ctx.peopleFromCamera = false;
+    planner.keepFlying(ctx, Plan{}, 0);
+    EXPECT_EQ(planner.unseenWatchAt(walkway, ctx.time), UnseenWatch::None);
+    EXPECT_STREQ(unseenWatchName(UnseenWatch::None), "-");
+}
+
 /** An 8 x 4 x 2.5 m box (room over the heads) under a 2.7 m ceiling, seen from (2, 2, 1). */
 struct TallRoom : test::HalfKnownRoomMap {
     void SetUp() override { map = test::halfSeenRoom(2.5, 2.7); }

@@ -169,8 +169,9 @@ void RunRecorder::addReplayPlan(const ReplayPlanRecord& r) {
     std::fprintf(plans_, ",%.3f\n", 1e3 * r.wallSec);
 }
 
-void RunRecorder::addCollision(int personIndex, double start, double end, int tracked) {
-    collisions_.push_back({personIndex, start, end, tracked});
+void RunRecorder::addCollision(int personIndex, double start, double end, int tracked,
+                               const std::string& unseenWatch) {
+    collisions_.push_back({personIndex, start, end, tracked, unseenWatch});
 }
 
 void RunRecorder::flush() {
@@ -243,9 +244,11 @@ void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec,
 }
 
 void RunRecorder::writeCollisions() const {
-    std::FILE* f = openForWriting(path("collisions.csv"), "person,start_s,end_s,tracked\n");
+    std::FILE* f =
+        openForWriting(path("collisions.csv"), "person,start_s,end_s,tracked,unseen_watch\n");
     for (const auto& c : collisions_)
-        std::fprintf(f, "%d,%.3f,%.3f,%d\n", c.person, c.start, c.end, c.tracked);
+        std::fprintf(f, "%d,%.3f,%.3f,%d,%s\n", c.person, c.start, c.end, c.tracked,
+                     c.unseenWatch.c_str());
     std::fclose(f);
 }
 

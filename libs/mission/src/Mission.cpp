@@ -64,9 +64,8 @@ struct Mission::Impl : FlightLoop::Mission {
         if (flying && exploring())
             pathLength += step.moved;
         const auto& events = sim.monitor().events();
-        while (collisionTracked.size() < events.size())
-            collisionTracked.push_back(
-                trackedAtCollision(events[collisionTracked.size()].personIndex));
+        while (collisionsBegun.size() < events.size())
+            collisionsBegun.push_back(atCollision(events[collisionsBegun.size()].personIndex));
     }
 
     /** The people's true positions (with people.csv), and the scene when one is due. */
@@ -100,15 +99,23 @@ struct Mission::Impl : FlightLoop::Mission {
             memory.addDue(core.map.knownVolumeInBox(), core.map.octree().size());
     }
 
-    /** Whether a track lay on the person (within a body's width) as the collision began. */
-    int trackedAtCollision(int person) const {
+    /** What the planner knew of a person as a collision with them began. */
+    struct CollisionBegun {
+        int tracked = -1;  ///< a track lay on the person, within a body's width (1 / 0)
+        planning::UnseenWatch unseen = planning::UnseenWatch::None;  ///< where they were
+    };
+
+    CollisionBegun atCollision(int person) const {
+        CollisionBegun begun;
         if (person < 0 || !core.driver.usesPeople())
-            return -1;
+            return begun;
         const Eigen::Vector2d at = sim.people().states()[static_cast<std::size_t>(person)].position;
+        begun.tracked = 0;
         for (const perception::PersonForecast& f : core.peopleInput.forecasts())
             if ((f.at(now()).mean - at).norm() < sim.people().params().bodySize.x())
-                return 1;
-        return 0;
+                begun.tracked = 1;
+        begun.unseen = core.driver.planner().unseenWatchAt(at, now());
+        return begun;
     }
 
     void explore() {
@@ -148,7 +155,8 @@ struct Mission::Impl : FlightLoop::Mission {
         const sim::CollisionMonitor& monitor = sim.monitor();
         for (std::size_t i = 0; i < monitor.events().size(); ++i) {
             const sim::CollisionEvent& e = monitor.events()[i];
-            core.recorder.addCollision(e.personIndex, e.start, e.end, collisionTracked[i]);
+            core.recorder.addCollision(e.personIndex, e.start, e.end, collisionsBegun[i].tracked,
+                                       planning::unseenWatchName(collisionsBegun[i].unseen));
         }
         eval::RunSummary s = core.summary(explorationTime(), pathLength, wallTime);
         s.reachablePercent =
@@ -186,7 +194,7 @@ struct Mission::Impl : FlightLoop::Mission {
     MemoryLog memory;
     FlightLoop flight{sim, core, *this};
     std::unique_ptr<PeopleTruthCsv> peopleTruth;  ///< with people.csv, in worlds with people
-    std::vector<int> collisionTracked;            ///< per monitor event, see trackedAtCollision
+    std::vector<CollisionBegun> collisionsBegun;  ///< per monitor event
     double nextScene = 0.0;
     const std::atomic<bool>* stopFlag = nullptr;
 

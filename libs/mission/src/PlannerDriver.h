@@ -50,6 +50,7 @@ public:
     PlannerDriver(std::unique_ptr<planning::ExplorationPlanner> planner, const Setup& setup);
 
     planning::ExplorationPlanner& planner() { return *planner_; }
+    const planning::ExplorationPlanner& planner() const { return *planner_; }
     bool usesPeople() const { return usesPeople_; }
 
     /** What the planner may look at, at time t from `pose`. */

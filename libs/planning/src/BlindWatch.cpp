@@ -145,6 +145,11 @@ double BlindWatch::unseenFrom(const Eigen::Vector2d& xy) const {
     return atCell(unseenFrom_, xy);
 }
 
+bool BlindWatch::walkwayAt(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& xy) const {
+    const int i = grid_.index(xy);
+    return i >= 0 && walkway(dfm, i % grid_.nx, i / grid_.nx);
+}
+
 double BlindWatch::atCell(const std::vector<double>& times, const Eigen::Vector2d& xy) const {
     const int i = grid_.index(xy);
     return i < 0 ? -kInf : times[static_cast<std::size_t>(i)];

@@ -654,6 +654,14 @@ bool DaepPlanner::movesClear(const DynamicObstacles& bodies, const PlanningConte
     return true;
 }
 
+UnseenWatch DaepPlanner::unseenWatchAt(const Eigen::Vector2d& xy, double time) const {
+    if (!guardingBlind_)
+        return UnseenWatch::None;
+    if (!watch_.walkwayAt(dfm_, xy))
+        return UnseenWatch::NoWalkway;
+    return watch_.unseenFrom(xy) <= time ? UnseenWatch::Open : UnseenWatch::Cleared;
+}
+
 bool DaepPlanner::startsSafely(const PlanningContext& context, const Plan& plan) const {
     return plan.escape || movesClear(obstaclesOf(context), context, plan, 0);
 }

@@ -11,6 +11,20 @@ double MotionLimits::travelTime(const FlatPose& a, const FlatPose& b) const {
     return turn + fly;
 }
 
+const char* unseenWatchName(UnseenWatch watch) {
+    switch (watch) {
+        case UnseenWatch::Open:
+            return "open";
+        case UnseenWatch::Cleared:
+            return "cleared";
+        case UnseenWatch::NoWalkway:
+            return "no_walkway";
+        case UnseenWatch::None:
+            break;
+    }
+    return "-";
+}
+
 void Plan::cutTo(std::size_t n) {
     if (n >= waypoints.size())
         return;

@@ -116,9 +116,11 @@ public:
     void addReplayPlan(const ReplayPlanRecord& plan);
     /**
      * One collision episode. `tracked`: whether the planner was tracking that person when it
-     * began (1 / 0), or -1 when the planner does not look at people.
+     * began (1 / 0), or -1 when the planner does not look at people; `unseenWatch`: what the
+     * planner's watch over people it has not seen held where the person was ("-": none).
      */
-    void addCollision(int personIndex, double start, double end, int tracked = -1);
+    void addCollision(int personIndex, double start, double end, int tracked = -1,
+                      const std::string& unseenWatch = "-");
 
     const std::vector<MetricsSample>& samples() const { return samples_; }
     const std::vector<double>& chargedPlanTimes() const { return chargedPlanTimes_; }
@@ -141,6 +143,7 @@ private:
         int person;
         double start, end;
         int tracked;
+        std::string unseenWatch;
     };
     std::string directory_;
     std::FILE* timeseries_ = nullptr;

@@ -63,6 +63,8 @@ public:
     double lastSeen(const Eigen::Vector2d& xy) const;
     /** The earliest time someone unseen may be at xy's cell (+infinity: nobody can be). */
     double unseenFrom(const Eigen::Vector2d& xy) const;
+    /** Whether xy's cell is a walkway of `dfm` (false outside the grid). */
+    bool walkwayAt(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& xy) const;
     const BlindWatchParams& params() const { return params_; }
 
 private:

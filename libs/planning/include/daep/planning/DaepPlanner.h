@@ -115,6 +115,8 @@ public:
      */
     std::optional<Plan> evasion(const PlanningContext& context, double until) override;
     bool startsSafely(const PlanningContext& context, const Plan& plan) const override;
+    /** The blind watch's answer (UnseenWatch::None while it is not guarding). */
+    UnseenWatch unseenWatchAt(const Eigen::Vector2d& xy, double time) const override;
 
     /**
      * Whether the drone at `stop` from `arrival` on would be cornered: some person could walk

@@ -107,6 +107,17 @@ struct PlanningContext {
     PlanningDeadline deadline;
 };
 
+/** What a planner's watch over the people its camera has not seen holds at a place. */
+enum class UnseenWatch {
+    None,       ///< the planner keeps no such watch (other planners; people from ground truth)
+    Open,       ///< a walkway someone unseen may be on by now
+    Cleared,    ///< a walkway the camera swept that nobody unseen can have reached yet
+    NoWalkway,  ///< a place where the watch expects nobody unseen
+};
+
+/** The name collisions.csv gives it: "-", "open", "cleared" or "no_walkway". */
+const char* unseenWatchName(UnseenWatch watch);
+
 /** One interface for RH-NBVP, AEP, DEP and DAEP. */
 class ExplorationPlanner {
 public:
@@ -157,6 +168,17 @@ public:
         (void)context;
         (void)plan;
         return true;
+    }
+
+    /**
+     * What the planner's watch over unseen people held at xy (x, y) at `time`, as of the last
+     * context it was given: why a walker it did not track could, or could not, be there.
+     * Changes nothing in the planner. Default: UnseenWatch::None.
+     */
+    virtual UnseenWatch unseenWatchAt(const Eigen::Vector2d& xy, double time) const {
+        (void)xy;
+        (void)time;
+        return UnseenWatch::None;
     }
 };
 
