@@ -50,6 +50,16 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
         rec.addPose(0.1, p);
         rec.addPlan(0.0, 0.05, 0.001, "path", 12.5, 1);
         rec.addCollision(2, 10.0, 11.5);
+        CollisionKnowledge lost;
+        lost.tracked = 0;
+        lost.untrackedFor = 12.34;
+        lost.unseenWatch = "open";
+        rec.addCollision(1, 20.0, 20.5, lost);
+        CollisionKnowledge found;
+        found.tracked = 1;
+        found.trackedFor = 0.2;
+        found.unseenWatch = "cleared";
+        rec.addCollision(3, 30.0, 31.0, found);
         RunSummary s;
         s.coveragePercent = 42.125;
         s.collisions = 3;
@@ -76,7 +86,9 @@ TEST(RunRecorder, WritesCsvRowsAndSummaryWithAllKeys) {
         EXPECT_NE(summary.find(key), std::string::npos) << key;
     EXPECT_EQ(summary.find("reachable_percent"), std::string::npos);  // unset: not written
     EXPECT_EQ(readText(dir / "nested" / "collisions.csv"),
-              "person,start_s,end_s,tracked,unseen_watch\n2,10.000,11.500,-1,-\n");
+              "person,start_s,end_s,tracked,unseen_watch,tracked_for_s,untracked_for_s\n"
+              "2,10.000,11.500,-1,-,-,-\n1,20.000,20.500,0,open,-,12.3\n"
+              "3,30.000,31.000,1,cleared,0.2,-\n");
     const std::string timing = readText(dir / "nested" / "timing.json");
     EXPECT_NE(timing.find("\"speedup_vs_real_time\": 50.00,"), std::string::npos) << timing;
     EXPECT_NE(timing.find("\"wall_time_by_stage_s\": {\"render\": 0.500, \"map\": 1.250}"),

@@ -169,9 +169,9 @@ void RunRecorder::addReplayPlan(const ReplayPlanRecord& r) {
     std::fprintf(plans_, ",%.3f\n", 1e3 * r.wallSec);
 }
 
-void RunRecorder::addCollision(int personIndex, double start, double end, int tracked,
-                               const std::string& unseenWatch) {
-    collisions_.push_back({personIndex, start, end, tracked, unseenWatch});
+void RunRecorder::addCollision(int personIndex, double start, double end,
+                               const CollisionKnowledge& knew) {
+    collisions_.push_back({personIndex, start, end, knew});
 }
 
 void RunRecorder::flush() {
@@ -245,10 +245,21 @@ void RunRecorder::writeTiming(double wallTimeSec, double simTimeSec,
 
 void RunRecorder::writeCollisions() const {
     std::FILE* f =
-        openForWriting(path("collisions.csv"), "person,start_s,end_s,tracked,unseen_watch\n");
-    for (const auto& c : collisions_)
-        std::fprintf(f, "%d,%.3f,%.3f,%d,%s\n", c.person, c.start, c.end, c.tracked,
-                     c.unseenWatch.c_str());
+        openForWriting(path("collisions.csv"),
+                       "person,start_s,end_s,tracked,unseen_watch,tracked_for_s,untracked_for_s\n");
+    const auto seconds = [f](const std::optional<double>& s) {
+        if (s)
+            std::fprintf(f, ",%.1f", *s);
+        else
+            std::fputs(",-", f);
+    };
+    for (const auto& c : collisions_) {
+        std::fprintf(f, "%d,%.3f,%.3f,%d,%s", c.person, c.start, c.end, c.knew.tracked,
+                     c.knew.unseenWatch.c_str());
+        seconds(c.knew.trackedFor);
+        seconds(c.knew.untrackedFor);
+        std::fputc('\n', f);
+    }
     std::fclose(f);
 }
 

@@ -70,6 +70,7 @@ struct Mission::Impl : FlightLoop::Mission {
 
     /** The people's true positions (with people.csv), and the scene when one is due. */
     void frameProcessed() override {
+        noteTracked();
         if (peopleTruth)
             peopleTruth->write(now(), sim.people().states());
         if (core.outputs.scene && core.outputs.sceneEvery > 0 && now() + kEps >= nextScene) {
@@ -99,23 +100,53 @@ struct Mission::Impl : FlightLoop::Mission {
             memory.addDue(core.map.knownVolumeInBox(), core.map.octree().size());
     }
 
-    /** What the planner knew of a person as a collision with them began. */
-    struct CollisionBegun {
-        int tracked = -1;  ///< a track lay on the person, within a body's width (1 / 0)
-        planning::UnseenWatch unseen = planning::UnseenWatch::None;  ///< where they were
-    };
-
-    CollisionBegun atCollision(int person) const {
-        CollisionBegun begun;
-        if (person < 0 || !core.driver.usesPeople())
-            return begun;
-        const Eigen::Vector2d at = sim.people().states()[static_cast<std::size_t>(person)].position;
-        begun.tracked = 0;
+    /** Whether a track lies on a person at `at`: its prediction within a body's width. */
+    bool trackLiesOn(const Eigen::Vector2d& at) const {
         for (const perception::PersonForecast& f : core.peopleInput.forecasts())
             if ((f.at(now()).mean - at).norm() < sim.people().params().bodySize.x())
-                begun.tracked = 1;
-        begun.unseen = core.driver.planner().unseenWatchAt(at, now());
-        return begun;
+                return true;
+        return false;
+    }
+
+    /** When tracks lay on a person, as of the last frame. */
+    struct TrackedSpan {
+        bool now = false;
+        double since = 0.0;          ///< when the unbroken stretch up to now began
+        std::optional<double> last;  ///< the last frame a track lay on them
+    };
+
+    void noteTracked() {
+        if (!core.driver.usesPeople())
+            return;
+        const std::vector<world::PersonState>& people = sim.people().states();
+        trackedSpans.resize(people.size());
+        for (std::size_t i = 0; i < people.size(); ++i) {
+            TrackedSpan& span = trackedSpans[i];
+            const bool on = trackLiesOn(people[i].position);
+            if (on && !span.now)
+                span.since = now();
+            if (on)
+                span.last = now();
+            span.now = on;
+        }
+    }
+
+    /** What the planner knew of a person as a collision with them began. */
+    eval::CollisionKnowledge atCollision(int person) const {
+        eval::CollisionKnowledge knew;
+        if (person < 0 || !core.driver.usesPeople())
+            return knew;
+        const auto i = static_cast<std::size_t>(person);
+        const Eigen::Vector2d at = sim.people().states()[i].position;
+        const TrackedSpan span = i < trackedSpans.size() ? trackedSpans[i] : TrackedSpan{};
+        knew.tracked = trackLiesOn(at) ? 1 : 0;
+        if (knew.tracked)
+            knew.trackedFor = span.now ? now() - span.since : 0.0;
+        else if (span.last)
+            knew.untrackedFor = now() - *span.last;
+        knew.unseenWatch =
+            planning::unseenWatchName(core.driver.planner().unseenWatchAt(at, now()));
+        return knew;
     }
 
     void explore() {
@@ -155,8 +186,7 @@ struct Mission::Impl : FlightLoop::Mission {
         const sim::CollisionMonitor& monitor = sim.monitor();
         for (std::size_t i = 0; i < monitor.events().size(); ++i) {
             const sim::CollisionEvent& e = monitor.events()[i];
-            core.recorder.addCollision(e.personIndex, e.start, e.end, collisionsBegun[i].tracked,
-                                       planning::unseenWatchName(collisionsBegun[i].unseen));
+            core.recorder.addCollision(e.personIndex, e.start, e.end, collisionsBegun[i]);
         }
         eval::RunSummary s = core.summary(explorationTime(), pathLength, wallTime);
         s.reachablePercent =
@@ -194,7 +224,8 @@ struct Mission::Impl : FlightLoop::Mission {
     MemoryLog memory;
     FlightLoop flight{sim, core, *this};
     std::unique_ptr<PeopleTruthCsv> peopleTruth;  ///< with people.csv, in worlds with people
-    std::vector<CollisionBegun> collisionsBegun;  ///< per monitor event
+    std::vector<eval::CollisionKnowledge> collisionsBegun;  ///< per monitor event
+    std::vector<TrackedSpan> trackedSpans;                  ///< per person, with people input
     double nextScene = 0.0;
     const std::atomic<bool>* stopFlag = nullptr;
 

@@ -22,6 +22,17 @@ struct MetricsSample {
     int collisions = 0;
 };
 
+/** What the planner knew of the person in a collision as it began (collisions.csv). */
+struct CollisionKnowledge {
+    int tracked = -1;  ///< 1 / 0: a track lay on the person; -1: the planner ignores people
+    /** With a track on them: how long tracks had lain on them without a break, s. */
+    std::optional<double> trackedFor;
+    /** Without: how long since a track last lay on them, s (none: never in this run). */
+    std::optional<double> untrackedFor;
+    /** What the planner's watch over people it has not seen held there ("-": no watch). */
+    std::string unseenWatch = "-";
+};
+
 /** Why a run ended; summary.json's end_reason is its text(). */
 struct EndReason {
     enum class Kind {
@@ -114,13 +125,9 @@ public:
                  double gain, int waypoints, const std::string& reason = "");
     /** One planner call of a replay (PlansFormat::Replay); its real time counts as charged. */
     void addReplayPlan(const ReplayPlanRecord& plan);
-    /**
-     * One collision episode. `tracked`: whether the planner was tracking that person when it
-     * began (1 / 0), or -1 when the planner does not look at people; `unseenWatch`: what the
-     * planner's watch over people it has not seen held where the person was ("-": none).
-     */
-    void addCollision(int personIndex, double start, double end, int tracked = -1,
-                      const std::string& unseenWatch = "-");
+    /** One collision episode, and what the planner knew of that person as it began. */
+    void addCollision(int personIndex, double start, double end,
+                      const CollisionKnowledge& knew = {});
 
     const std::vector<MetricsSample>& samples() const { return samples_; }
     const std::vector<double>& chargedPlanTimes() const { return chargedPlanTimes_; }
@@ -142,8 +149,7 @@ private:
     struct Collision {
         int person;
         double start, end;
-        int tracked;
-        std::string unseenWatch;
+        CollisionKnowledge knew;
     };
     std::string directory_;
     std::FILE* timeseries_ = nullptr;
