@@ -100,10 +100,18 @@ struct Mission::Impl : FlightLoop::Mission {
             memory.addDue(core.map.knownVolumeInBox(), core.map.octree().size());
     }
 
-    /** Whether a track lies on a person at `at`: its prediction within a body's width. */
-    bool trackLiesOn(const Eigen::Vector2d& at) const {
+    /** Where the tracks predict their people now. */
+    std::vector<Eigen::Vector2d> trackedNow() const {
+        std::vector<Eigen::Vector2d> means;
         for (const perception::PersonForecast& f : core.peopleInput.forecasts())
-            if ((f.at(now()).mean - at).norm() < sim.people().params().bodySize.x())
+            means.push_back(f.at(now()).mean);
+        return means;
+    }
+
+    /** Whether a track lies on a person at `at`: a prediction within a body's width. */
+    bool trackLiesOn(const std::vector<Eigen::Vector2d>& tracked, const Eigen::Vector2d& at) const {
+        for (const Eigen::Vector2d& mean : tracked)
+            if ((mean - at).norm() < sim.people().params().bodySize.x())
                 return true;
         return false;
     }
@@ -119,10 +127,11 @@ struct Mission::Impl : FlightLoop::Mission {
         if (!core.driver.usesPeople())
             return;
         const std::vector<world::PersonState>& people = sim.people().states();
+        const std::vector<Eigen::Vector2d> tracked = trackedNow();
         trackedSpans.resize(people.size());
         for (std::size_t i = 0; i < people.size(); ++i) {
             TrackedSpan& span = trackedSpans[i];
-            const bool on = trackLiesOn(people[i].position);
+            const bool on = trackLiesOn(tracked, people[i].position);
             if (on && !span.now)
                 span.since = now();
             if (on)
@@ -139,7 +148,7 @@ struct Mission::Impl : FlightLoop::Mission {
         const auto i = static_cast<std::size_t>(person);
         const Eigen::Vector2d at = sim.people().states()[i].position;
         const TrackedSpan span = i < trackedSpans.size() ? trackedSpans[i] : TrackedSpan{};
-        knew.tracked = trackLiesOn(at) ? 1 : 0;
+        knew.tracked = trackLiesOn(trackedNow(), at) ? 1 : 0;
         if (knew.tracked)
             knew.trackedFor = span.now ? now() - span.since : 0.0;
         else if (span.last)
