@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -90,16 +91,27 @@ TEST(RayCaster, PeopleAppearMoveAndLeave) {
     EXPECT_EQ(rc.castRay(kOrigin, down, 100), kInf);
 }
 
-TEST(RayCaster, PacketsEqualSingleRays) {
-    RayCaster rc(analyticWorld());
+/** The analytic world with a person standing in it. */
+void addPerson(RayCaster& rc) {
     PersonState p;
     p.position = {0, -3};
     rc.setPeople({p}, {1, 1, 1.8});
-    std::mt19937 rng(7);
+}
+
+/** n random unit directions, flattened towards the horizontal. */
+std::vector<Eigen::Vector3f> randomDirections(unsigned seed, std::size_t n) {
+    std::mt19937 rng(seed);
     std::normal_distribution<float> n01;
-    std::vector<Eigen::Vector3f> dirs(1001);  // not a multiple of the packet size
+    std::vector<Eigen::Vector3f> dirs(n);
     for (auto& d : dirs)
         d = Eigen::Vector3f(n01(rng), n01(rng), 0.3f * n01(rng)).normalized();
+    return dirs;
+}
+
+TEST(RayCaster, PacketsEqualSingleRays) {
+    RayCaster rc(analyticWorld());
+    addPerson(rc);
+    const auto dirs = randomDirections(7, 1001);  // not a multiple of the packet size
     std::vector<float> out;
     rc.castRays(kOrigin, dirs, 6.0f, out);
     ASSERT_EQ(out.size(), dirs.size());
@@ -115,6 +127,30 @@ TEST(RayCaster, PacketsEqualSingleRays) {
     }
     EXPECT_GT(hits, 100);
     EXPECT_LT(hits, 1000);
+}
+
+TEST(RayCaster, TurnedCastsEqualCastsOfTheTurnedDirections) {
+    RayCaster rc(analyticWorld());
+    addPerson(rc);
+    const auto dirs = randomDirections(11, 517);
+    int hits = 0;
+    for (const double yaw : {0.0, 0.7, -2.9, M_PI / 2, M_PI}) {
+        const RayCaster::YawTurn turn{float(std::cos(yaw)), float(std::sin(yaw))};
+        std::vector<Eigen::Vector3f> turned;
+        for (const auto& r : dirs)
+            turned.emplace_back(turn.cos * r.x() - turn.sin * r.y(),
+                                turn.sin * r.x() + turn.cos * r.y(), r.z());
+        std::vector<float> expected, out;
+        rc.castRays(kOrigin, turned, 6.0f, expected);
+        rc.castRays(kOrigin, dirs, turn, 6.0f, out);
+        ASSERT_EQ(out.size(), dirs.size());
+        for (std::size_t i = 0; i < dirs.size(); ++i) {
+            ASSERT_EQ(std::memcmp(&out[i], &expected[i], sizeof(float)), 0) << yaw << " " << i;
+            hits += std::isfinite(out[i]);
+        }
+    }
+    EXPECT_GT(hits, 300);      // rays that hit something, and
+    EXPECT_LT(hits, 5 * 400);  // rays that miss everything
 }
 
 TEST(RayCaster, EmptyInputGivesEmptyOutput) {

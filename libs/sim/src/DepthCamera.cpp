@@ -88,53 +88,48 @@ FlatPose DepthCamera::sensorPose(const FlatPose& drone) const {
     return sensor;
 }
 
-void DepthCamera::renderDepth(const world::RayCaster& scene, const FlatPose& drone,
-                              std::mt19937_64* rng, std::vector<float>& depth) const {
+template <typename Emit>
+void DepthCamera::forEachDepth(const world::RayCaster& scene, const FlatPose& drone,
+                               std::mt19937_64* rng, const Emit& emit) const {
     // Per-thread scratch: render() is const and may run on several threads at once.
-    thread_local std::vector<Eigen::Vector3f> worldDirs;
     thread_local std::vector<float> ranges;
 
     const FlatPose sensor = sensorPose(drone);
-    const float c = static_cast<float>(std::cos(sensor.yaw));
-    const float s = static_cast<float>(std::sin(sensor.yaw));
+    const world::RayCaster::YawTurn turn{static_cast<float>(std::cos(sensor.yaw)),
+                                         static_cast<float>(std::sin(sensor.yaw))};
     const std::size_t n = pixelRaysCamera_.size();
-    worldDirs.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const Eigen::Vector3f& r = pixelRaysCamera_[i];
-        worldDirs[i] = Eigen::Vector3f(c * r.x() - s * r.y(), s * r.x() + c * r.y(), r.z());
-    }
-    scene.castRays(sensor.position.cast<float>(), worldDirs, static_cast<float>(params_.maxRange),
-                   ranges);
+    scene.castRays(sensor.position.cast<float>(), pixelRaysCamera_, turn,
+                   static_cast<float>(params_.maxRange), ranges);
 
-    depth.resize(n);
     const bool noisy = rng != nullptr && params_.noiseSigma > 0.0;
     const GaussianSampler& normal = standardNormal();
     const double sigma = params_.noiseSigma;
     SplitMix64 frameRng(noisy ? (*rng)() : 0);
     for (std::size_t i = 0; i < n; ++i) {
         if (!std::isfinite(ranges[i])) {
-            depth[i] = 0.0f;
+            emit(i, 0.0f);
             continue;
         }
-        depth[i] = ranges[i] * depthPerRange_[i];
-        if (noisy) {
-            // Noise must not turn a return into the "no return" value 0.
-            depth[i] = std::max(depth[i] + static_cast<float>(sigma * normal(frameRng)), kMinDepth);
-        }
+        const float depth = ranges[i] * depthPerRange_[i];
+        // Noise must not turn a return into the "no return" value 0.
+        emit(i, noisy ? std::max(depth + static_cast<float>(sigma * normal(frameRng)), kMinDepth)
+                      : depth);
     }
+}
+
+void DepthCamera::renderDepth(const world::RayCaster& scene, const FlatPose& drone,
+                              std::mt19937_64* rng, std::vector<float>& depth) const {
+    depth.resize(pixelRaysCamera_.size());
+    forEachDepth(scene, drone, rng, [&depth](std::size_t i, float d) { depth[i] = d; });
 }
 
 void DepthCamera::render(const world::RayCaster& scene, const FlatPose& drone, double timeSec,
                          std::mt19937_64& rng, mrpt::obs::CObservation3DRangeScan& obs) const {
-    thread_local std::vector<float> depth;
-    renderDepth(scene, drone, &rng, depth);
-
     const float units = rangeUnitsFor(params_.maxRange);
     obs.rangeImage_setSize(params_.height, params_.width);
     uint16_t* pixels = obs.rangeImage.data();
-    for (std::size_t i = 0; i < depth.size(); ++i) {
-        pixels[i] = quantiseDepth(depth[i], units);
-    }
+    forEachDepth(scene, drone, &rng,
+                 [pixels, units](std::size_t i, float d) { pixels[i] = quantiseDepth(d, units); });
     obs.hasRangeImage = true;
     obs.range_is_depth = true;
     obs.rangeUnits = units;

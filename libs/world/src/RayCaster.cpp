@@ -95,13 +95,13 @@ void initPacket(Packet& p, const Eigen::Vector3f& o) {
 }
 
 /** The fields of a packet initPacket set up that each cast sets anew. */
-template <typename Packet, int K>
+template <typename Packet, int K, typename Direction>
 void fillPacket(Packet& p, int* valid, const Eigen::Vector3f* dirs, std::size_t count,
-                float maxRange) {
+                float maxRange, const Direction& direction) {
     for (int k = 0; k < K; ++k) {
         const bool on = static_cast<std::size_t>(k) < count;
         valid[k] = on ? -1 : 0;
-        const Eigen::Vector3f& d = on ? dirs[k] : dirs[0];
+        const Eigen::Vector3f d = direction(on ? dirs[k] : dirs[0]);
         p.ray.dir_x[k] = d.x();
         p.ray.dir_y[k] = d.y();
         p.ray.dir_z[k] = d.z();
@@ -249,10 +249,10 @@ struct RayCaster::Impl {
         rtcReleaseGeometry(geom);
     }
 
-    template <typename Packet, int K, typename Intersect>
+    template <typename Packet, int K, typename Intersect, typename Direction>
     void castPackets(Intersect intersect, const Eigen::Vector3f& origin,
                      const std::vector<Eigen::Vector3f>& dirs, float maxRange,
-                     std::vector<float>& out) const {
+                     const Direction& direction, std::vector<float>& out) const {
         alignas(64) Packet packet;
         alignas(64) int valid[K];
         RTCIntersectContext context;
@@ -261,12 +261,25 @@ struct RayCaster::Impl {
         initPacket<Packet, K>(packet, origin);
         for (std::size_t base = 0; base < dirs.size(); base += K) {
             const std::size_t count = std::min<std::size_t>(K, dirs.size() - base);
-            fillPacket<Packet, K>(packet, valid, dirs.data() + base, count, maxRange);
+            fillPacket<Packet, K>(packet, valid, dirs.data() + base, count, maxRange, direction);
             intersect(valid, scene, &context, &packet);
             for (std::size_t k = 0; k < count; ++k)
                 out[base + k] =
                     packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? kInf : packet.ray.tfar[k];
         }
+    }
+
+    template <typename Direction>
+    void castAll(const Eigen::Vector3f& origin, const std::vector<Eigen::Vector3f>& dirs,
+                 float maxRange, const Direction& direction, std::vector<float>& out) const {
+        out.resize(dirs.size());
+        if (dirs.empty())
+            return;
+        DenormalsFlushed ftz;
+        if (packets16)
+            castPackets<RTCRayHit16, 16>(rtcIntersect16, origin, dirs, maxRange, direction, out);
+        else
+            castPackets<RTCRayHit8, 8>(rtcIntersect8, origin, dirs, maxRange, direction, out);
     }
 };
 
@@ -370,14 +383,20 @@ int RayCaster::firstPersonHit(const Eigen::Vector3f& origin, const Eigen::Vector
 void RayCaster::castRays(const Eigen::Vector3f& origin,
                          const std::vector<Eigen::Vector3f>& unitDirs, float maxRange,
                          std::vector<float>& out) const {
-    out.resize(unitDirs.size());
-    if (unitDirs.empty())
-        return;
-    DenormalsFlushed ftz;
-    if (impl_->packets16)
-        impl_->castPackets<RTCRayHit16, 16>(rtcIntersect16, origin, unitDirs, maxRange, out);
-    else
-        impl_->castPackets<RTCRayHit8, 8>(rtcIntersect8, origin, unitDirs, maxRange, out);
+    impl_->castAll(
+        origin, unitDirs, maxRange, [](const Eigen::Vector3f& d) { return d; }, out);
+}
+
+void RayCaster::castRays(const Eigen::Vector3f& origin,
+                         const std::vector<Eigen::Vector3f>& unitDirs, YawTurn turn, float maxRange,
+                         std::vector<float>& out) const {
+    const float c = turn.cos, s = turn.sin;
+    impl_->castAll(
+        origin, unitDirs, maxRange,
+        [c, s](const Eigen::Vector3f& r) {
+            return Eigen::Vector3f(c * r.x() - s * r.y(), s * r.x() + c * r.y(), r.z());
+        },
+        out);
 }
 
 }  // namespace daep::world

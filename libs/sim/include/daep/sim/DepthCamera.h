@@ -66,6 +66,11 @@ public:
                      std::vector<float>& depth) const;
 
 private:
+    /** Calls emit(i, depth) for every pixel i in order, depth 0 for no return. */
+    template <typename Emit>
+    void forEachDepth(const world::RayCaster& scene, const FlatPose& drone, std::mt19937_64* rng,
+                      const Emit& emit) const;
+
     CameraParams params_;
     std::vector<Eigen::Vector3f> pixelRaysCamera_;  ///< unit rays in the sensor frame (x fwd)
     std::vector<float> depthPerRange_;              ///< depth = range * depthPerRange_[i]

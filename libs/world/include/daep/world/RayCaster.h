@@ -38,6 +38,18 @@ public:
     void castRays(const Eigen::Vector3f& origin, const std::vector<Eigen::Vector3f>& unitDirs,
                   float maxRange, std::vector<float>& out) const;
 
+    /** A turn about the z axis by the angle whose cosine and sine these are. */
+    struct YawTurn {
+        float cos, sin;
+    };
+    /**
+     * castRays of the directions turned by `turn` about z, each as it is put into its packet:
+     * (cos x - sin y, sin x + cos y, z), in float. A camera's fixed pixel rays need no turned
+     * copy each frame.
+     */
+    void castRays(const Eigen::Vector3f& origin, const std::vector<Eigen::Vector3f>& unitDirs,
+                  YawTurn turn, float maxRange, std::vector<float>& out) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
