@@ -228,7 +228,7 @@ struct Scan {
  * expects the two trees equal leaf for leaf and log-odds for log-odds.
  */
 void expectOctomapsDiscreteUpdate(const Aabb& box, const std::vector<Scan>& scans,
-                                  std::size_t minLeaves) {
+                                  std::size_t minLeaves, int readEvery = 0) {
     const MapParams params;
     ExplorationMap map(params, box);
     octomap::OcTree reference(params.resolution);
@@ -236,7 +236,8 @@ void expectOctomapsDiscreteUpdate(const Aabb& box, const std::vector<Scan>& scan
     reference.setProbMiss(params.probMiss);
     reference.setClampingThresMin(params.clampMin);
     reference.setClampingThresMax(params.clampMax);
-    for (const Scan& scan : scans) {
+    for (std::size_t s = 0; s < scans.size(); ++s) {
+        const Scan& scan = scans[s];
         octomap::Pointcloud cloud;
         for (const Eigen::Vector3f& p : scan.points)
             cloud.push_back(p.x(), p.y(), p.z());
@@ -244,7 +245,13 @@ void expectOctomapsDiscreteUpdate(const Aabb& box, const std::vector<Scan>& scan
         const Eigen::Vector3f o = scan.origin.cast<float>();
         reference.insertPointCloud(cloud, octomap::point3d(o.x(), o.y(), o.z()), params.maxRange,
                                    false, true);
+        // The tree takes the grid's changes when read: read between frames too, node for node.
+        if (readEvery > 0 && s % std::size_t(readEvery) == 0) {
+            ASSERT_EQ(map.octree().size(), reference.size()) << s;
+            ASSERT_EQ(map.octree().getNumLeafNodes(), reference.getNumLeafNodes()) << s;
+        }
     }
+    EXPECT_EQ(map.octree().size(), reference.size());
     std::size_t leaves = 0;
     for (auto it = reference.begin_leafs(); it != reference.end_leafs(); ++it, ++leaves) {
         const octomap::OcTreeNode* ours = map.octree().search(it.getKey(), it.getDepth());
@@ -271,6 +278,7 @@ TEST(ExplorationMap, InsertionEqualsOctomapsOwnDiscreteUpdate) {
                     .cast<float>());
     }
     expectOctomapsDiscreteUpdate(box, scans, 5000);
+    expectOctomapsDiscreteUpdate(box, scans, 5000, 3);
 }
 
 TEST(ExplorationMap, RaysCutAtTheRangeOnCellFacesAreOctomapsToo) {

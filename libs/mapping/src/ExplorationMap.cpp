@@ -2,7 +2,6 @@
 
 #include <fstream>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -80,6 +79,7 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
     }
     cells.assign(std::size_t(total), std::uint8_t(CellState::Unknown));
     flags.assign(std::size_t(total), 0);
+    treeStale.assign((std::size_t(total) + 63) / 64, 0);
     const std::size_t rows = std::size_t(dims[1]) * std::size_t(dims[2]);
     passWords = (dims[0] + 63) / 64;
     passBits.assign(rows * std::size_t(passWords), 0);
@@ -90,6 +90,7 @@ ExplorationMap::Impl::Impl(const MapParams& params, const Aabb& box) : tree(para
         blockCount *= std::size_t(blockDims[a]);
     }
     blocks.assign(blockCount, kBlockStale);
+    logOddsBlocks.resize(blockCount);
 }
 
 CellState ExplorationMap::Impl::treeState(const octomap::OcTreeKey& key) const {
@@ -206,27 +207,41 @@ void ExplorationMap::Impl::markRay(const octomap::point3d& origin, const octomap
 
 bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) {
     const std::int64_t i = gridIndex(key);
-    // OctoMap leaves a clamped cell as it is (after a search of the tree); the flag says so
-    // without the search.
-    if (i >= 0 && (flags[std::size_t(i)] & (hit ? kClampedOccupied : kClampedFree)))
+    if (i < 0) {
+        // Not lazy: updateInnerOccupancy() after each frame walks the whole tree (about 30 ms
+        // at 2e6 leaves); eager updates cost O(frame) and keep the tree pruned.
+        tree.updateNode(key, hit, false);
         return false;
-    // Not lazy: updateInnerOccupancy() after each frame walks the whole tree (about 30 ms at
-    // 2e6 leaves); eager updates cost O(frame) and keep the tree pruned. The returned node is
-    // the leaf or the pruned ancestor now holding the cell's value.
-    const octomap::OcTreeNode* node = tree.updateNode(key, hit, false);
-    if (i < 0)
-        return false;
-    std::uint8_t& cell = cells[std::size_t(i)];
+    }
     std::uint8_t& f = flags[std::size_t(i)];
+    // OctoMap leaves a clamped cell as it is; the flag says so.
+    if (f & (hit ? kClampedOccupied : kClampedFree))
+        return false;
+    // OctoMap's updateNodeLogOdds, in the same float arithmetic.
+    float& value = logOddsAt(int(key[0]) - int(gridMin[0]), int(key[1]) - int(gridMin[1]),
+                             int(key[2]) - int(gridMin[2]));
+    value += hit ? tree.getProbHitLog() : tree.getProbMissLog();
+    if (value < tree.getClampingThresMinLog())
+        value = tree.getClampingThresMinLog();
+    else if (value > tree.getClampingThresMaxLog())
+        value = tree.getClampingThresMaxLog();
+    std::uint64_t& staleWord = treeStale[std::size_t(i) >> 6];
+    const std::uint64_t staleBit = std::uint64_t(1) << (i & 63);
+    if (!(staleWord & staleBit)) {
+        staleWord |= staleBit;
+        treeStaleCells.push_back(i);
+    }
+    std::uint8_t& cell = cells[std::size_t(i)];
     const std::uint8_t before = cell, hitBefore = f & kEverHit;
     const bool newlyKnown = cell == std::uint8_t(CellState::Unknown) && keyInBox(key);
     if (hit && (f & kClampedFree))
         f |= kMovedIn;
-    cell = std::uint8_t(tree.isNodeOccupied(node) ? CellState::Occupied : CellState::Free);
+    cell =
+        std::uint8_t(value >= tree.getOccupancyThresLog() ? CellState::Occupied : CellState::Free);
     f &= std::uint8_t(~(kClampedFree | kClampedOccupied));
-    if (node->getLogOdds() <= tree.getClampingThresMinLog())
+    if (value <= tree.getClampingThresMinLog())
         f |= kClampedFree;
-    else if (node->getLogOdds() >= tree.getClampingThresMaxLog())
+    else if (value >= tree.getClampingThresMaxLog())
         f |= kClampedOccupied;
     f |= std::uint8_t(hit ? kEverHit : 0);
     if (cell != before || (f & kEverHit) != hitBefore)
@@ -234,6 +249,20 @@ bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) 
     if (cell != before)
         frontierCellChanged(i);
     return newlyKnown;
+}
+
+/**
+ * Each changed cell set to its value with the tree kept pruned, as its updates one by one
+ * would have left it: a node is pruned when its eight children are leaves of one value, and
+ * every change re-checks the nodes above it, so the tree depends on its leaves' values alone.
+ */
+void ExplorationMap::Impl::flushTree() const {
+    for (const std::int64_t i : treeStaleCells) {
+        const std::array<int, 3> c = cellOfIndex(i);
+        tree.setNodeValue(keyOfIndex(i), updatedLogOdds(c[0], c[1], c[2]), false);
+        treeStale[std::size_t(i) >> 6] &= ~(std::uint64_t(1) << (i & 63));
+    }
+    treeStaleCells.clear();
 }
 
 /**
@@ -323,6 +352,7 @@ double ExplorationMap::coverage() const {
 }
 
 const octomap::OcTree& ExplorationMap::octree() const {
+    impl_->flushTree();
     return impl_->tree;
 }
 
@@ -340,7 +370,7 @@ bool ExplorationMap::writeBinary(const std::string& path) const {
     std::ofstream out(path, std::ios::binary);
     if (!out)
         return false;
-    const auto& t = impl_->tree;
+    const auto& t = octree();
     out << "# Octomap OcTree binary file\n"
         << "id " << t.getTreeType() << "\n"
         << "size " << t.size() << "\n"

@@ -44,6 +44,84 @@ private:
 
 }  // namespace
 
+/** What a frame's pixels are tested against before their cells become end cells. */
+struct PixelTests {
+    const Body& body;
+    const PeopleBuckets& onPeople;
+    bool hasPeople;
+    Eigen::Vector3f origin;
+    float maxRange2;
+};
+
+/**
+ * The key of the cell containing p: keyOf, or with kFloored its floor through std::floor (one
+ * instruction where built for SSE4.1; the same keys, floor being exact).
+ */
+template <bool kFloored>
+__attribute__((always_inline)) inline bool ExplorationMap::Impl::pixelKey(
+    const Eigen::Vector3f& p, octomap::OcTreeKey& key) const {
+    if constexpr (!kFloored) {
+        return keyOf(octomap::point3d(p.x(), p.y(), p.z()), key);
+    } else {
+        constexpr double kHalfSpan = 32768.0;
+        for (int a = 0; a < 3; ++a) {
+            const double v = pointIndex.scale * double(p[a]);
+            if (!(v >= -kHalfSpan && v < kHalfSpan))
+                return false;
+            key[unsigned(a)] = octomap::key_type(int(std::floor(v)) + int(kHalfSpan));
+        }
+        return true;
+    }
+}
+
+/**
+ * One image row's end cells, each added once; most repeats, a pixel in the same cell as the
+ * one to its left or above, skipped before even that lookup.
+ */
+template <bool kFloored>
+__attribute__((always_inline)) inline void ExplorationMap::Impl::addRowEnds(
+    const DepthRow& row, const PixelTests& tests) {
+    std::uint64_t previous = kNoKey;  // the left neighbour's key, if it had a return
+    for (std::size_t u = 0; u < row.returned.size(); ++u) {
+        const Eigen::Vector3f p(row.x[u], row.y[u], row.z[u]);
+        octomap::OcTreeKey key;
+        if (!row.returned[u] || !pixelKey<kFloored>(p, key)) {
+            previous = kNoKey;  // no return, or a point outside the tree
+            continue;
+        }
+        std::uint64_t& above = rowAbove[u];
+        if (tests.body.contains(p)) {
+            previous = kNoKey;
+            above = kNoKey;
+            continue;
+        }
+        if (tests.hasPeople && (p - tests.origin).squaredNorm() <= tests.maxRange2 &&
+            tests.onPeople.contains(p)) {
+            personKeys.insert(key);
+            previous = kNoKey;
+            above = kNoKey;
+            continue;
+        }
+        const std::uint64_t packed = pack(key);
+        if (packed != previous && packed != above)
+            addEnd(key);
+        previous = packed;
+        above = packed;
+    }
+}
+
+void ExplorationMap::Impl::addRowEndsSse41(const DepthRow& row, const PixelTests& tests) {
+    addRowEnds<true>(row, tests);
+}
+
+void ExplorationMap::Impl::addRowEnds(const DepthRow& row, const PixelTests& tests) {
+    static const bool hasSse41 = __builtin_cpu_supports("sse4.1");
+    if (hasSse41)
+        addRowEndsSse41(row, tests);
+    else
+        addRowEnds<false>(row, tests);
+}
+
 SensorFrame sensorFrameInWorld(const mrpt::obs::CObservation3DRangeScan& obs,
                                const FlatPose& robot) {
     const mrpt::poses::CPose3D robotPose(robot.position.x(), robot.position.y(), robot.position.z(),
@@ -96,8 +174,7 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
 
 /**
  * The discrete update reduces every end point to its voxel anyway, so each voxel is added once
- * as the pixels are read (most repeats, a pixel in the same voxel as the one to the left or
- * above, skipped before even that lookup) and the update walks one ray per voxel.
+ * as the pixels are read (addRowEnds) and the update walks one ray per voxel.
  */
 void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan& obs,
                                        const FlatPose& robot,
@@ -108,35 +185,9 @@ void ExplorationMap::insertObservation(const mrpt::obs::CObservation3DRangeScan&
     const PeopleBuckets onPeople(people);
     const Body body(robot, params_.bodyHalfExtents);
     m.rowAbove.assign(std::size_t(obs.rangeImage.cols()), kNoKey);
-    forEachDepthRow(obs, frame, [&](int, const DepthRow& row) {
-        std::uint64_t previous = kNoKey;  // the left neighbour's key, if it had a return
-        for (std::size_t u = 0; u < row.returned.size(); ++u) {
-            octomap::OcTreeKey key;
-            if (!row.returned[u] || !m.keyOf(octomap::point3d(row.x[u], row.y[u], row.z[u]), key)) {
-                previous = kNoKey;  // no return, or a point outside the tree
-                continue;
-            }
-            const Eigen::Vector3f p(row.x[u], row.y[u], row.z[u]);
-            std::uint64_t& above = m.rowAbove[u];
-            if (body.contains(p)) {
-                previous = kNoKey;
-                above = kNoKey;
-                continue;
-            }
-            if (!people.empty() && (p - frame.origin).squaredNorm() <= maxRange2 &&
-                onPeople.contains(p)) {
-                m.personKeys.insert(key);
-                previous = kNoKey;
-                above = kNoKey;
-                continue;
-            }
-            const std::uint64_t packed = pack(key);
-            if (packed != previous && packed != above)
-                m.addEnd(key);
-            previous = packed;
-            above = packed;
-        }
-    });
+    const PixelTests tests{body, onPeople, !people.empty(), frame.origin, maxRange2};
+    forEachDepthRow(obs, frame,
+                    [&m, &tests](int, const DepthRow& row) { m.addRowEnds(row, tests); });
     if (params_.noReturnIsFree)
         addNoReturnRays(obs, frame);
     const octomap::point3d o(frame.origin.x(), frame.origin.y(), frame.origin.z());

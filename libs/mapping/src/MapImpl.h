@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "OctreeKeys.h"
@@ -14,6 +15,9 @@
 
 namespace daep::mapping {
 
+struct DepthRow;
+struct PixelTests;
+
 /**
  * The octree plus its dense mirror. Dense-grid indices are derived from octree keys only, so
  * the grid and the tree agree on which cell contains a point.
@@ -21,8 +25,8 @@ namespace daep::mapping {
 struct ExplorationMap::Impl {
     Impl(const MapParams& params, const Aabb& box);
 
-    octomap::OcTree tree;
-    octomap::OcTreeKey gridMin;  ///< key of the grid's first cell on each axis
+    mutable octomap::OcTree tree;  ///< behind the grid's cells until flushTree()
+    octomap::OcTreeKey gridMin;    ///< key of the grid's first cell on each axis
     std::array<int, 3> dims{};
     std::vector<std::uint8_t> cells;
     /// Per dense cell: kEverHit once any frame ended a ray in it (see grazedSurface); whether
@@ -36,6 +40,36 @@ struct ExplorationMap::Impl {
     static constexpr std::uint8_t kFlown = 64;
     /// A return ended in the cell while it was clamped free: something moved in (see movedIn).
     static constexpr std::uint8_t kMovedIn = 128;
+    /// Per dense cell: its log-odds, as OctoMap's updates would leave them (0 while unknown).
+    /// The octree takes the cells that changed only when it is read (flushTree): a cell is
+    /// updated several times before it clamps, and the tree's search, expansion and pruning
+    /// each time cost more than the grid's own update. Kept per block of the frontier blocks'
+    /// size, allocated when a cell in it is first updated: a world's grid holds much that is
+    /// never seen (under the ground, inside walls, beyond the box's walls).
+    std::vector<std::unique_ptr<float[]>> logOddsBlocks;
+    /** Grid cell (x, y, z)'s log-odds, its block allocated if need be. */
+    float& logOddsAt(int x, int y, int z) {
+        std::unique_ptr<float[]>& block =
+            logOddsBlocks[blockIndex(x >> kBlockShift, y >> kBlockShift, z >> kBlockShift)];
+        if (!block)
+            block = std::make_unique<float[]>(std::size_t(1) << (3 * kBlockShift));  // zeros
+        return block[inBlock(x, y, z)];
+    }
+    /** The log-odds of a grid cell that has been updated (its block exists). */
+    float updatedLogOdds(int x, int y, int z) const {
+        return logOddsBlocks[blockIndex(x >> kBlockShift, y >> kBlockShift, z >> kBlockShift)]
+                            [inBlock(x, y, z)];
+    }
+    static std::size_t inBlock(int x, int y, int z) {
+        constexpr int kMask = (1 << kBlockShift) - 1;
+        return std::size_t((x & kMask) + ((y & kMask) << kBlockShift) +
+                           ((z & kMask) << (2 * kBlockShift)));
+    }
+    /// One bit per dense cell: changed since the tree last took it (the list holds each once).
+    mutable std::vector<std::uint64_t> treeStale;
+    mutable std::vector<std::int64_t> treeStaleCells;
+    /** Gives the octree every dense cell changed since it was last read. */
+    void flushTree() const;
     /// Per axis, whether the cell with that key offset has its centre inside the box.
     std::array<std::vector<std::uint8_t>, 3> inBox;
     /// Per axis, whether the cell with that key offset overlaps the box at all (its centre may
@@ -191,6 +225,15 @@ struct ExplorationMap::Impl {
     template <Passable P>
     bool capsuleCellsAllowed(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                              double radius) const;
+
+    /** Adds the end cells of one image row's pixels that pass the frame's tests. */
+    void addRowEnds(const DepthRow& row, const PixelTests& tests);
+    template <bool kFloored>
+    void addRowEnds(const DepthRow& row, const PixelTests& tests);
+    __attribute__((target("sse4.1"))) void addRowEndsSse41(const DepthRow& row,
+                                                           const PixelTests& tests);
+    template <bool kFloored>
+    bool pixelKey(const Eigen::Vector3f& p, octomap::OcTreeKey& key) const;
 
     /** Adds the cell of an end point to the frame's ends, unless it is there already. */
     void addEnd(const octomap::OcTreeKey& key) {

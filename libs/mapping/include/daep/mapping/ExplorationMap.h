@@ -204,6 +204,11 @@ public:
     double resolution() const { return params_.resolution; }
     const MapParams& params() const { return params_; }
     const Aabb& explorationBox() const { return box_; }
+    /**
+     * The map as an OctoMap tree, the very tree OctoMap's own updates would have built. The
+     * dense grid's cells reach it when it is asked for, so this call writes to it: not to be
+     * made from two threads at once, nor while another thread reads the tree.
+     */
     const octomap::OcTree& octree() const;
 
     /** Centre of the cell that contains p. */
