@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kGridMargin = 1.0;  // metres of dense grid around the exploration box
 constexpr std::int64_t kMaxGridCells = std::int64_t(1) << 30;
+constexpr std::size_t kMaxTreeStaleCells = std::size_t(1) << 18;
 
 void validate(const MapParams& p, const Aabb& box) {
     std::ostringstream err;
@@ -302,6 +303,9 @@ std::size_t ExplorationMap::Impl::integrate(const octomap::point3d& origin, doub
     freeOutside.clear();
     occupiedOutside.clear();
     endsOutside.clear();
+    // The list of cells the tree has yet to take stays within a few MB, however rarely it is read.
+    if (treeStaleCells.size() > kMaxTreeStaleCells)
+        flushTree();
     return newlyKnown;
 }
 
