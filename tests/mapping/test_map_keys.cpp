@@ -22,6 +22,11 @@ void expectSameKey(const octomap::OcTree& tree, double c) {
     if (inTree) {
         ASSERT_EQ(ours, theirs) << c;
     }
+    octomap::key_type floored = 0;  // the SSE4.1 pixel loop's floor
+    ASSERT_EQ(octreeAxisKey<true>(1.0 / tree.getResolution(), c, floored), inTree) << c;
+    if (inTree) {
+        ASSERT_EQ(floored, theirs) << c;
+    }
 }
 
 TEST(OctreeAxisKey, IsOctomapsKeyOnAndOffCellBoundaries) {
@@ -46,6 +51,8 @@ TEST(OctreeAxisKey, IsOctomapsKeyOnAndOffCellBoundaries) {
         EXPECT_FALSE(octreeAxisKey(scale, std::numeric_limits<double>::quiet_NaN(), k));
         EXPECT_FALSE(octreeAxisKey(scale, std::numeric_limits<double>::infinity(), k));
         EXPECT_FALSE(octreeAxisKey(scale, -1e300, k));
+        EXPECT_FALSE(octreeAxisKey<true>(scale, std::numeric_limits<double>::quiet_NaN(), k));
+        EXPECT_FALSE(octreeAxisKey<true>(scale, -1e300, k));
     }
 }
 

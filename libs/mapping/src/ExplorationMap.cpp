@@ -260,7 +260,7 @@ bool ExplorationMap::Impl::applyUpdate(const octomap::OcTreeKey& key, bool hit) 
 void ExplorationMap::Impl::flushTree() const {
     for (const std::int64_t i : treeStaleCells) {
         const std::array<int, 3> c = cellOfIndex(i);
-        tree.setNodeValue(keyOfIndex(i), updatedLogOdds(c[0], c[1], c[2]), false);
+        tree.setNodeValue(keyOfCell(c), updatedLogOdds(c[0], c[1], c[2]), false);
         treeStale[std::size_t(i) >> 6] &= ~(std::uint64_t(1) << (i & 63));
     }
     treeStaleCells.clear();

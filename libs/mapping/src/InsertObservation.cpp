@@ -53,25 +53,14 @@ struct PixelTests {
     float maxRange2;
 };
 
-/**
- * The key of the cell containing p: keyOf, or with kFloored its floor through std::floor (one
- * instruction where built for SSE4.1; the same keys, floor being exact).
- */
+/** The key of the cell containing p: keyOf's, with octreeAxisKey<kFloored>. */
 template <bool kFloored>
 __attribute__((always_inline)) inline bool ExplorationMap::Impl::pixelKey(
     const Eigen::Vector3f& p, octomap::OcTreeKey& key) const {
-    if constexpr (!kFloored) {
-        return keyOf(octomap::point3d(p.x(), p.y(), p.z()), key);
-    } else {
-        constexpr double kHalfSpan = 32768.0;
-        for (int a = 0; a < 3; ++a) {
-            const double v = pointIndex.scale * double(p[a]);
-            if (!(v >= -kHalfSpan && v < kHalfSpan))
-                return false;
-            key[unsigned(a)] = octomap::key_type(int(std::floor(v)) + int(kHalfSpan));
-        }
-        return true;
-    }
+    const double scale = pointIndex.scale;
+    return octreeAxisKey<kFloored>(scale, p.x(), key[0]) &&
+           octreeAxisKey<kFloored>(scale, p.y(), key[1]) &&
+           octreeAxisKey<kFloored>(scale, p.z(), key[2]);
 }
 
 /**

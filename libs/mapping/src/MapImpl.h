@@ -127,8 +127,9 @@ struct ExplorationMap::Impl {
     }
 
     /** The key of a dense index (the inverse of gridIndex). */
-    octomap::OcTreeKey keyOfIndex(std::int64_t i) const {
-        const std::array<int, 3> c = cellOfIndex(i);
+    octomap::OcTreeKey keyOfIndex(std::int64_t i) const { return keyOfCell(cellOfIndex(i)); }
+    /** The key of grid cell (x, y, z). */
+    octomap::OcTreeKey keyOfCell(const std::array<int, 3>& c) const {
         return octomap::OcTreeKey(octomap::key_type(gridMin[0] + c[0]),
                                   octomap::key_type(gridMin[1] + c[1]),
                                   octomap::key_type(gridMin[2] + c[2]));
