@@ -680,25 +680,32 @@ std::pair<Plan, Plan> planRaisedAndNot(const mapping::ExplorationMap& map,
     return {raising.plan(ctx), asPlanned.plan(ctx)};
 }
 
-TEST_F(TallRoom, WithPeopleFromTheCameraStopsAreRaisedOverTheirHeads) {
-    // Over a body (1.8 m), half the drone (0.05 m), the clearance (0.2 m) and 5 cm.
-    const double overHeads = 1.8 + 0.05 + 0.2 + 0.05;
+/**
+ * Plans from `root` with people from the camera, raised and as planned, seeds 1-6: every stop
+ * is the planned one, at its height or at `overHeads`, and points added to climb are at
+ * `overHeads`; every leg is flyable and timed as flown. Returns how many stops were raised.
+ */
+int stopsRaisedTo(const mapping::ExplorationMap& map, const Eigen::Vector3d& root,
+                  double overHeads) {
     int raised = 0;
     for (std::uint64_t seed = 1; seed <= 6; ++seed) {
-        const auto [plan, asPlanned] = planRaisedAndNot(*map, root, seed, "auto", true);
-        ASSERT_EQ(plan.status, Plan::Status::Path) << plan.reason;
+        const auto [plan, asPlanned] = planRaisedAndNot(map, root, seed, "auto", true);
+        EXPECT_EQ(plan.status, Plan::Status::Path) << plan.reason;
         EXPECT_NE(plan.reason.find("over heads"), std::string::npos) << plan.reason;
-        PlanningContext ctx = contextFor(*map, root);
+        PlanningContext ctx = contextFor(map, root);
         FlatPose at = ctx.pose;
         double t = ctx.time;
         std::size_t k = 0;  // the planned stop met next
         for (const Waypoint& w : plan.waypoints) {
             const FlatPose& p = w.pose;
-            EXPECT_TRUE(segmentFlyable(*map, at.position, p.position, 0.3, 0.05, false)) << seed;
+            EXPECT_TRUE(segmentFlyable(map, at.position, p.position, 0.3, 0.05, false)) << seed;
             t += ctx.motion.travelTime(at, p);  // timed as flown, climbs included
             EXPECT_NEAR(w.arrivalTime, t, 1e-9) << seed;
             at = p;
-            ASSERT_LT(k, asPlanned.waypoints.size()) << seed;
+            if (k >= asPlanned.waypoints.size()) {
+                ADD_FAILURE() << "more stops than planned, seed " << seed;
+                break;
+            }
             const FlatPose& q = asPlanned.waypoints[k].pose;
             if (!p.position.head<2>().isApprox(q.position.head<2>(), 1e-9)) {
                 // A point added to climb first: over the heads, with the leg's heading.
@@ -716,7 +723,41 @@ TEST_F(TallRoom, WithPeopleFromTheCameraStopsAreRaisedOverTheirHeads) {
         }
         EXPECT_EQ(k, asPlanned.waypoints.size()) << seed;  // every planned stop, in order
     }
-    EXPECT_GT(raised, 3);
+    return raised;
+}
+
+TEST_F(TallRoom, WithPeopleFromTheCameraStopsAreRaisedOverTheirHeads) {
+    // Over a body (1.8 m), half the drone (0.05 m), the clearance (0.2 m) and 5 cm.
+    EXPECT_GT(stopsRaisedTo(*map, root, 1.8 + 0.05 + 0.2 + 0.05), 3);
+}
+
+/** An 8 x 4 x 2 m box (Crosswalks' height) in a room whose ceiling is 2.7 m high. */
+struct LowBoxTallRoom : test::HalfKnownRoomMap {
+    void SetUp() override { map = test::halfSeenRoom(2.0, 2.7); }
+};
+
+TEST_F(LowBoxTallRoom, StopsOverTheHeadsRiseToTheBoxsTopLessHalfTheDrone) {
+    // Under a 2 m box's top less robot_radius (1.7 m) nobody can be flown over; at its top
+    // less half the drone (1.95 m) its underside is 10 cm over the bodies' 1.8 m.
+    EXPECT_GT(stopsRaisedTo(*map, root, 2.0 - 0.05), 3);
+}
+
+TEST_F(LowBoxTallRoom, LessRoomOverTheHeadsThanTheLeastGapKeepsTheStopsAmongThem) {
+    const std::string on = "true";
+    const auto cfg = test::configFromText(test::editKey(
+        daepText("over_heads_min_clearance", "0.051"), "daep", "fly_over_heads", &on));
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        DaepPlanner planner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), seed);
+        PlanningContext ctx = contextFor(*map, root);
+        ctx.peopleFromCamera = true;
+        const std::vector<PersonForecast> nobody;
+        ctx.people = &nobody;
+        const Plan plan = planner.plan(ctx);
+        ASSERT_FALSE(plan.waypoints.empty()) << plan.reason;
+        EXPECT_EQ(plan.reason.find("over heads"), std::string::npos) << plan.reason;
+        for (const Waypoint& w : plan.waypoints)
+            EXPECT_LE(w.pose.position.z(), 2.0 - 0.3 + 1e-9) << seed;
+    }
 }
 
 /**
@@ -764,7 +805,8 @@ TEST(DaepOverHeads, AGoalWhoseViewIsUnderALintelIsNotRaisedOverTheHeads) {
 }
 
 TEST_F(TallRoom, WithGroundTruthPeopleOrNoRoomOverHeadsThePlanIsKept) {
-    // Ground truth (auto is off), and a 2 m box (the drone at most 1.7 m high).
+    // Ground truth (auto is off), and a 2 m box under a 2.1 m ceiling: over the heads the
+    // drone's ball would reach the ceiling.
     const auto lowMap = test::halfSeenRoom(2.0, 2.1);
     for (std::uint64_t seed = 1; seed <= 3; ++seed)
         for (const auto& [m, lift, fromCamera] :
@@ -776,6 +818,26 @@ TEST_F(TallRoom, WithGroundTruthPeopleOrNoRoomOverHeadsThePlanIsKept) {
                     plan.waypoints[k].pose.position.isApprox(asPlanned.waypoints[k].pose.position))
                     << seed;
         }
+}
+
+TEST_F(LowBoxTallRoom, TheEscapeFromAWalkerIsStraightUpToTheBoxsTopLessHalfTheDrone) {
+    DaepPlanner planner = makePlanner(3);
+    PlanningContext ctx = contextFor(*map, root, 0.0);
+    ctx.peopleFromCamera = true;
+    std::vector<PersonForecast> people{walker(0, {4.5, 2.0}, {-0.35, 0}, ctx.time)};
+    ctx.people = &people;
+    const std::optional<Plan> escape = planner.evasion(ctx, ctx.time + 3.0);
+    ASSERT_TRUE(escape.has_value());
+    ASSERT_EQ(escape->waypoints.size(), 1u) << escape->reason;
+    EXPECT_TRUE(escape->waypoints[0].pose.position.isApprox(Eigen::Vector3d(2.0, 2.0, 1.95)))
+        << escape->reason;
+    // Up there the walker passes under the drone: the climb and the hover after it are safe.
+    EXPECT_TRUE(planner.obstacles().isSafe(planner.timedMoves(ctx, *escape, 0)[0]));
+    TimedSegment hover;
+    hover.from = hover.to = escape->waypoints[0].pose.position;
+    hover.start = escape->waypoints[0].arrivalTime;
+    hover.turnTime = 20.0;
+    EXPECT_GT(planner.obstacles().clearance(hover), 0.0);
 }
 
 TEST_F(TallRoom, WithRoomOverHeadsTheEscapeFromAWalkerIsStraightUp) {

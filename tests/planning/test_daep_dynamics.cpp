@@ -115,6 +115,27 @@ TEST(DynamicObstacles, BelowTheTopClimbingCountsAsAWayOutOnlyWhereTheCeilingAllo
     EXPECT_EQ(roomy.isSafe(near), lowRoom.isSafe(near));
 }
 
+TEST(DynamicObstacles, OverTheHeadsTheGapKeptIsTheOverheadClearanceWhenSet) {
+    // Flying 1.92 m high over someone standing at the origin: 7 cm over the top of the body
+    // (1.8 m) plus half the drone (0.05 m).
+    const TimedSegment over = fly({-2, 0, 1.92}, {2, 0, 1.92}, 0.0);
+    SafetyParams s = exactSafety();
+    s.clearance = 0.2;
+    const DynamicObstacles usual(s, {walker(0, {0, 0}, {0, 0})});
+    EXPECT_NEAR(usual.clearedHeight(), 1.85 + 0.2, 1e-12);
+    EXPECT_FALSE(usual.isSafe(over));
+    s.overheadClearance = 0.05;
+    const DynamicObstacles low(s, {walker(0, {0, 0}, {0, 0})});
+    EXPECT_NEAR(low.clearedHeight(), 1.85 + 0.05, 1e-12);
+    EXPECT_NEAR(low.clearance(over), 1.92 - 1.9, 1e-9);
+    EXPECT_TRUE(low.isSafe(over));
+    // Sideways the clearance is unchanged.
+    TimedSegment beside;
+    beside.from = beside.to = {3, 0, 1};
+    beside.turnTime = 1.0;
+    EXPECT_NEAR(low.clearance(beside), usual.clearance(beside), 1e-12);
+}
+
 TEST(DynamicObstacles, SampledChecksAreConservativeForFastCrossings) {
     // Drone and person cross head-on between two samples: the slack must still catch it.
     SafetyParams s = exactSafety();

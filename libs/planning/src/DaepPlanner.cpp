@@ -25,6 +25,8 @@ constexpr double kDfmPeriod = 0.2;
 constexpr double kDfmFreshness = 0.5;
 /** How far (m) over the height that clears every body a stop over the heads is put. */
 constexpr double kOverHeads = 0.05;
+/** Heights (m) closer than this compare equal: a stop at the ceiling is under it. */
+constexpr double kHeightTolerance = 1e-9;
 /** Headings a look before a stop may take, evenly around (besides the worst walkway's). */
 constexpr int kLookDirections = 16;
 
@@ -66,6 +68,7 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.blind.range = requirePositive(r, "blind_watch_range");
     p.blind.maxLooks = requireIntAtLeast(r, "blind_max_looks", 0);
     p.flyOverHeads = requireEnum(r, "fly_over_heads", autoSwitch);
+    p.overHeadsMinClearance = requireNonNegative(r, "over_heads_min_clearance");
     return p;
 }
 
@@ -95,8 +98,21 @@ DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const 
     safety.droneSize = context.droneSize;
     safety.personSize = context.personSize;
     safety.ceiling = shrink(context.explorationBox, params().robotRadius).max.z();
+    if (isOn(params_.flyOverHeads, context.peopleFromCamera))
+        fitOverHeads(context, safety);
     return DynamicObstacles(
         safety, context.people ? *context.people : std::vector<perception::PersonForecast>{});
+}
+
+void DaepPlanner::fitOverHeads(const PlanningContext& context, SafetyParams& safety) const {
+    const double halfHeight = 0.5 * context.droneSize.z();
+    const double top = context.explorationBox.max.z() - halfHeight;
+    const double room = top - kOverHeads - (context.personSize.z() + halfHeight);
+    if (room < params_.overHeadsMinClearance - kHeightTolerance)
+        return;  // no room over the heads: the flight space's ceiling stands
+    // Up there the map, not the box shrunk by the robot radius, says what is flyable.
+    safety.ceiling = std::max(safety.ceiling, top);
+    safety.overheadClearance = std::min(safety.clearance, room);
 }
 
 void DaepPlanner::observePeople(const PlanningContext& context) {
@@ -327,7 +343,7 @@ std::optional<double> DaepPlanner::overHeadsHeight() const {
 
 std::optional<double> DaepPlanner::escapeUpHeight() const {
     const double height = obstacles_.clearedHeight() + kOverHeads;
-    if (height > obstacles_.params().ceiling)
+    if (height > obstacles_.params().ceiling + kHeightTolerance)
         return std::nullopt;
     return height;
 }

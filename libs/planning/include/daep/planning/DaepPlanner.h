@@ -59,6 +59,12 @@ struct DaepParams {
      * camera, which does not see who walks up behind the drone).
      */
     AutoSwitch flyOverHeads = AutoSwitch::Auto;
+    /**
+     * Flying over the heads, the drone's centre may rise to the box's top less its half height
+     * (the reference planners' waypoints reach the box's top); where that leaves less than
+     * `clearance` over the bodies, it keeps what is left, but never less than this (m).
+     */
+    double overHeadsMinClearance = 0.05;
 
     static DaepParams fromConfig(const mrpt::config::CConfigFileBase& config);
 };
@@ -138,6 +144,8 @@ private:
     void observePeople(const PlanningContext& context);
     /** The people of the context as predicted bodies, sized for this drone and these people. */
     DynamicObstacles obstaclesOf(const PlanningContext& context) const;
+    /** The ceiling and the gap over the bodies that flying over the heads allows. */
+    void fitOverHeads(const PlanningContext& context, SafetyParams& safety) const;
     /** Whether the plan's moves from nextWaypoint on, within the safety horizon, are clear. */
     bool movesClear(const DynamicObstacles& bodies, const PlanningContext& context,
                     const Plan& plan, std::size_t nextWaypoint) const;

@@ -26,6 +26,8 @@ struct SafetyParams {
      * horizontal one alone.
      */
     double ceiling = std::numeric_limits<double>::infinity();
+    /** Free gap kept over a body's top, m; unset: `clearance`. */
+    std::optional<double> overheadClearance;
 };
 
 /** A drone move as the simulator flies it: turn on the spot at `from`, then fly to `to`. */
@@ -84,7 +86,7 @@ public:
 
     /** Drone centres at or above this height keep the clearance over every body. */
     double clearedHeight(double clearanceScale = 1.0) const {
-        return bodyTop_ + clearanceScale * params_.clearance;
+        return bodyTop_ + clearanceScale * params_.overheadClearance.value_or(params_.clearance);
     }
     /** Centre distance kept from a body known exactly: body + drone + clearance. */
     double bodyKeepOut(double clearanceScale = 1.0) const {
