@@ -105,9 +105,8 @@ DynamicObstacles DaepPlanner::obstaclesOf(const PlanningContext& context) const 
 }
 
 void DaepPlanner::fitOverHeads(const PlanningContext& context, SafetyParams& safety) const {
-    const double halfHeight = 0.5 * context.droneSize.z();
-    const double top = context.explorationBox.max.z() - halfHeight;
-    const double room = top - kOverHeads - (context.personSize.z() + halfHeight);
+    const double top = context.explorationBox.max.z() - 0.5 * safety.droneSize.z();
+    const double room = top - kOverHeads - safety.bodyTop();
     if (room < params_.overHeadsMinClearance - kHeightTolerance)
         return;  // no room over the heads: the flight space's ceiling stands
     // Up there the map, not the box shrunk by the robot radius, says what is flyable.

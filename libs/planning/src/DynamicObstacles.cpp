@@ -45,7 +45,7 @@ DynamicObstacles::DynamicObstacles(const SafetyParams& params,
     : params_(params), people_(std::move(people)) {
     bodyRadius_ =
         0.5 * params.personSize.head<2>().norm() + 0.5 * params.droneSize.head<2>().norm();
-    bodyTop_ = params.personSize.z() + 0.5 * params.droneSize.z();
+    bodyTop_ = params.bodyTop();
 }
 
 namespace {

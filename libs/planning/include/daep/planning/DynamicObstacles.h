@@ -28,6 +28,9 @@ struct SafetyParams {
     double ceiling = std::numeric_limits<double>::infinity();
     /** Free gap kept over a body's top, m; unset: `clearance`. */
     std::optional<double> overheadClearance;
+
+    /** Drone centres below this can touch a body: its top plus half the drone. */
+    double bodyTop() const { return personSize.z() + 0.5 * droneSize.z(); }
 };
 
 /** A drone move as the simulator flies it: turn on the spot at `from`, then fly to `to`. */
