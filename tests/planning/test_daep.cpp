@@ -701,16 +701,22 @@ int stopsRaisedTo(const mapping::ExplorationMap& map, const Eigen::Vector3d& roo
             EXPECT_TRUE(segmentFlyable(map, at.position, p.position, 0.3, 0.05, false)) << seed;
             t += ctx.motion.travelTime(at, p);  // timed as flown, climbs included
             EXPECT_NEAR(w.arrivalTime, t, 1e-9) << seed;
+            const FlatPose before = at;
             at = p;
+            if (before.position.z() < overHeads - 1e-9 && p.position.z() > overHeads - 1e-9 &&
+                p.position.head<2>().isApprox(before.position.head<2>(), 1e-9))
+                EXPECT_DOUBLE_EQ(p.yaw, before.yaw) << "a climb on the spot before its turn";
             if (k >= asPlanned.waypoints.size()) {
                 ADD_FAILURE() << "more stops than planned, seed " << seed;
                 break;
             }
             const FlatPose& q = asPlanned.waypoints[k].pose;
-            if (!p.position.head<2>().isApprox(q.position.head<2>(), 1e-9)) {
-                // A point added to climb first: over the heads, with the leg's heading.
+            if (!p.position.head<2>().isApprox(q.position.head<2>(), 1e-9) || p.yaw != q.yaw) {
+                // A point added to climb first, over the heads: with the leg's heading, or
+                // straight up with the heading the drone had, before the turn.
                 EXPECT_NEAR(p.position.z(), overHeads, 1e-9) << seed;
-                EXPECT_DOUBLE_EQ(p.yaw, q.yaw) << seed;
+                if (p.yaw != q.yaw)  // straight up, then (next) the turn
+                    EXPECT_TRUE(p.position.head<2>().isApprox(before.position.head<2>(), 1e-9));
                 continue;
             }
             // The same stop, the same view; higher where its legs allow it.

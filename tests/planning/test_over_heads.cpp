@@ -97,5 +97,30 @@ TEST_F(OverHeads, AWayOverTheHeadsEndsBeforeItGoesDownAmongThePeopleAfterALongFl
               4u);
 }
 
+TEST_F(OverHeads, AClimbOnTheSpotIsFlownBeforeTheTurnItComesWith) {
+    // A move turns first, then flies: turning 3 rad below the heads would leave the drone
+    // there 3 s longer. Climb with the heading it has, then turn up there.
+    const FlatPose low{{2.0, 2.0, 1.0}, -1.4};
+    const std::vector<Waypoint> way =
+        climbBeforeTurning(space, low, {stop(2.0, 2.0, 2.1, 1.6), stop(3.0, 2.0, 2.1, 1.6)});
+    ASSERT_EQ(way.size(), 3u);
+    EXPECT_TRUE(way[0].pose.position.isApprox(Eigen::Vector3d(2.0, 2.0, 2.1)));
+    EXPECT_DOUBLE_EQ(way[0].pose.yaw, -1.4);
+    EXPECT_DOUBLE_EQ(way[1].pose.yaw, 1.6);
+    EXPECT_TRUE(way[1].pose.position.isApprox(way[0].pose.position));
+    // The same further on: a low stop, then up from it.
+    EXPECT_EQ(climbBeforeTurning(space, {{2.0, 2.0, 2.1}, 0.0},
+                                 {stop(3.0, 2.0, 1.0, 0.0), stop(3.0, 2.0, 2.1, 1.0)})
+                  .size(),
+              3u);
+    // No turn, a leg across (the drone faces where it flies), a drop, or already up there:
+    // flown as planned.
+    for (const auto& [from, to] : {std::pair{low, stop(2.0, 2.0, 2.1, -1.4)},
+                                   {low, stop(3.0, 2.0, 2.1, 1.6)},
+                                   {FlatPose{{2.0, 2.0, 2.1}, 0.0}, stop(2.0, 2.0, 1.0, 1.6)},
+                                   {FlatPose{{2.0, 2.0, 2.1}, 0.0}, stop(2.0, 2.0, 2.1, 1.6)}})
+        EXPECT_EQ(climbBeforeTurning(space, from, {to}).size(), 1u);
+}
+
 }  // namespace
 }  // namespace daep::planning

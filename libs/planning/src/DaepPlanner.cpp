@@ -605,6 +605,7 @@ Plan DaepPlanner::overHeads(const PlanningContext& context, Plan plan) const {
     // either way it stops over the heads before going down among the people again.
     for (std::vector<Waypoint> way : {stayHigh(space, start, raised), raised}) {
         way.resize(beforeDescent(space, start, way));
+        way = climbBeforeTurning(space, context.pose, way);
         if (!any && samePositions(way, plan.waypoints))
             return plan;  // nothing raised, added or cut
         Plan candidate = plan;

@@ -13,7 +13,7 @@ double headingTowards(const Eigen::Vector3d& from, const Eigen::Vector3d& to, do
 
 std::vector<FlatPose> FlightModel::movePoses(const FlatPose& a, const FlatPose& b) const {
     const Eigen::Vector2d d = (b.position - a.position).head<2>();
-    if (!faceTravel || d.norm() < 0.05)
+    if (!faceTravel || d.norm() < kOnTheSpot)
         return {b};
     const FlatPose along{b.position, std::atan2(d.y(), d.x())};
     if (std::abs(wrapAngle(along.yaw - b.yaw)) < 1e-6)
@@ -33,7 +33,7 @@ double FlightModel::moveTime(const FlatPose& a, const FlatPose& b) const {
 
 double FlightModel::reachTime(const FlatPose& from, double start, const Eigen::Vector3d& to) const {
     const Eigen::Vector2d d = (to - from.position).head<2>();
-    if (faceTravel && d.norm() >= 0.05)
+    if (faceTravel && d.norm() >= kOnTheSpot)
         return start + moveTime(from, {to, std::atan2(d.y(), d.x())});
     return start + (to - from.position).norm() / motion.speed;
 }

@@ -1,5 +1,8 @@
 #include "daep/planning/OverHeads.h"
 
+#include <cmath>
+
+#include "daep/planning/FlightModel.h"
 #include "daep/planning/FlightSpace.h"
 
 namespace daep::planning {
@@ -69,6 +72,24 @@ std::vector<Waypoint> stayHigh(const OverHeadsSpace& space, const Eigen::Vector3
         out.push_back(next);
         fromStart = fromStart && b == start;
         a = b;
+    }
+    return out;
+}
+
+std::vector<Waypoint> climbBeforeTurning(const OverHeadsSpace& space, const FlatPose& start,
+                                         const std::vector<Waypoint>& stops) {
+    constexpr double kSameHeading = 1e-9;
+    std::vector<Waypoint> out;
+    FlatPose at = start;
+    for (const Waypoint& next : stops) {
+        const FlatPose& to = next.pose;
+        const bool climbsOnTheSpot =
+            !isHigh(space, at.position) && isHigh(space, to.position) &&
+            (to.position - at.position).head<2>().norm() < FlightModel::kOnTheSpot;
+        if (climbsOnTheSpot && std::abs(wrapAngle(to.yaw - at.yaw)) > kSameHeading)
+            out.push_back({{to.position, at.yaw}, 0.0});
+        out.push_back(next);
+        at = to;
     }
     return out;
 }

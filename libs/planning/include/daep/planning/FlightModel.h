@@ -19,6 +19,9 @@ double headingTowards(const Eigen::Vector3d& from, const Eigen::Vector3d& to, do
  * camera looks where it goes.
  */
 struct FlightModel {
+    /** Moves shorter than this (m) across are flown on the spot: no turn to face them. */
+    static constexpr double kOnTheSpot = 0.05;
+
     MotionLimits motion;
     bool faceTravel = false;
 

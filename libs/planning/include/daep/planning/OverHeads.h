@@ -38,6 +38,14 @@ std::vector<Waypoint> stayHigh(const OverHeadsSpace& space, const Eigen::Vector3
                                const std::vector<Waypoint>& stops);
 
 /**
+ * The stops with every climb on the spot from below space.height to over it flown before the
+ * turn it comes with: the drone leaves the people's reach at once and turns up there (a move
+ * turns first, then flies). The drone is at `start`; arrival times are left to the caller.
+ */
+std::vector<Waypoint> climbBeforeTurning(const OverHeadsSpace& space, const FlatPose& start,
+                                         const std::vector<Waypoint>& stops);
+
+/**
  * Where to end a way flown over the heads before it goes down among the people again: the
  * index of the first stop below space.height that follows at least 2 m (across) flown over
  * the heads from `start`, or stops.size() when there is none. There the drone stops over the
