@@ -149,5 +149,35 @@ TEST_F(Walkway, QuietCellsAreNoWalkway) {
     }
 }
 
+TEST_F(Walkway, APersonLostIsFollowedOffTheWalkwaysForBlindLostS) {
+    // A walker measured 3 m west of the lane, at (2.5, 5.5), then lost as the camera turns
+    // away: nobody was ever seen walking there, yet they walk on from where they were.
+    for (const double lostTime : {30.0, 0.0}) {
+        params.lostTime = lostTime;
+        watch = BlindWatch(dfm, params);
+        look(2.5, 0.2, M_PI / 2, 11.0, {{2.5, 5.5}});
+        lookAway(11.2);
+        EXPECT_TRUE(std::isinf(watch.unseenFrom({2.5, 7.5})));  // no walkway
+        if (lostTime == 0.0) {
+            EXPECT_TRUE(std::isinf(watch.lostFrom({2.5, 7.5}, 12.0)));
+            EXPECT_LE(excess({2.0, 7.5}, 15.0, 17.0), 0.0);
+            continue;
+        }
+        EXPECT_DOUBLE_EQ(watch.lostFrom({2.5, 5.5}, 12.0), 11.0);  // may still be there
+        EXPECT_DOUBLE_EQ(watch.lostFrom({2.5, 7.5}, 12.0), 15.0);  // 2 m on, 4 s later
+        const BlindThreat t = watch.worstThreat(dfm, {2.0, 7.5}, 15.0, 17.0, keepOut);
+        EXPECT_TRUE(t.lost);
+        EXPECT_NEAR(t.excess, keepOut + 0.5 * 2.0 - 0.5, 1e-12);
+        // Looked at, the cell is clear until they could walk in again from where it missed.
+        look(2.5, 0.2, M_PI / 2, 16.0);
+        EXPECT_TRUE(std::isinf(watch.lostFrom({2.5, 7.5}, 16.0)));
+        lookAway(16.2);
+        EXPECT_GT(watch.lostFrom({2.5, 7.5}, 16.2), 16.2);
+        // Followed for blind_lost_s from their last measurement (11 s), then no longer.
+        EXPECT_LE(excess({2.0, 7.5}, 41.5, 43.5), 0.0);
+        EXPECT_TRUE(std::isinf(watch.lostFrom({2.5, 7.5}, 41.5)));
+    }
+}
+
 }  // namespace
 }  // namespace daep::planning

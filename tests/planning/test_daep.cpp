@@ -515,11 +515,26 @@ TEST_F(DaepRoom, FacingTravelFliesEveryLegLookingAheadThenTurnsToTheView) {
  * A camera-fed planner (with `key` = `value` in [daep]) that saw a person stand behind it, at
  * (0.5, 2.5), then lost them.
  */
+/** newPlanner with `blind_lost_s` set as well (0: people lost are followed along walkways). */
+std::unique_ptr<DaepPlanner> newPlannerFollowingLost(const std::string& lostSeconds,
+                                                     const std::string& key = "",
+                                                     const std::string& value = "") {
+    const auto cfg = test::configFromText(
+        test::editKey(daepText(key, value), "daep", "blind_lost_s", &lostSeconds));
+    return std::make_unique<DaepPlanner>(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg),
+                                         3);
+}
+
+/**
+ * A guarded planner that saw a walker stand behind the drone and lost them at 4.25 s; by
+ * default it follows them along the walkways alone, the room's one walkway their cell.
+ */
 std::unique_ptr<DaepPlanner> guardedAfterAWalkerBehind(const mapping::ExplorationMap& map,
                                                        const Eigen::Vector3d& at,
                                                        const std::string& value,
-                                                       const std::string& key = "blind_guard") {
-    std::unique_ptr<DaepPlanner> owned = newPlanner(3, key, value);
+                                                       const std::string& key = "blind_guard",
+                                                       const std::string& lostSeconds = "0") {
+    std::unique_ptr<DaepPlanner> owned = newPlannerFollowingLost(lostSeconds, key, value);
     DaepPlanner& planner = *owned;
     PlanningContext ctx = contextFor(map, at);  // facing +x: the walker is behind
     ctx.peopleFromCamera = true;
@@ -557,8 +572,9 @@ TEST_F(DaepRoom, BeforeStoppingNearAWalkwayItHasNotWatchedItTurnsToLookAtIt) {
 TEST_F(DaepRoom, ALookBeforeAStopTurnsToSeeEveryWalkwayThatThreatensIt) {
     // Two walkers stood behind the drone, 90 degrees apart as it sees them, then were lost.
     // Turned at either walkway the camera (103 degrees wide) misses the other; turned between
-    // them it sees both, and the stop is clear after one look.
-    std::unique_ptr<DaepPlanner> owned = newPlanner(3);
+    // them it sees both, and the stop is clear after one look. Followed along their walkways
+    // alone: off them, in the small room, they could be anywhere behind the drone by now.
+    std::unique_ptr<DaepPlanner> owned = newPlannerFollowingLost("0");
     DaepPlanner& planner = *owned;
     const Eigen::Vector2d west(0.5, 2.5), south(1.5, 0.5);
     PlanningContext ctx = contextFor(*map, root);  // facing +x: both are behind
@@ -641,13 +657,18 @@ TEST_F(DaepRoom, AWalkwayJustLookedAtOrAGuardSwitchedOffNeedsNoLook) {
 TEST_F(DaepRoom, TheBlindWatchSaysWhetherSomeoneUnseenCouldBeAtAPlace) {
     const Eigen::Vector2d walkway(0.5, 2.5), farFromIt(6.5, 2.5);
     const std::vector<PersonForecast> nobody;
-    const std::unique_ptr<DaepPlanner> owned = guardedAfterAWalkerBehind(*map, root, "auto");
+    const std::unique_ptr<DaepPlanner> owned =
+        guardedAfterAWalkerBehind(*map, root, "auto", "blind_guard", "30");
     DaepPlanner& planner = *owned;
-    // Lost behind the drone at 4.25 s: they may be there still, and nobody is expected
-    // where nobody was ever seen.
+    // Lost behind the drone at 4.25 s: they may be there still; off the walkway, they may
+    // have walked 1.4 m (behind the drone, unseen) but not 6 m; and after blind_lost_s the
+    // guard expects them on the walkways alone.
     EXPECT_EQ(planner.unseenWatchAt(walkway, 12.0), UnseenWatch::Open);
+    EXPECT_EQ(planner.unseenWatchAt({1.5, 3.5}, 12.0), UnseenWatch::Lost);
+    EXPECT_STREQ(unseenWatchName(UnseenWatch::Lost), "lost");
     EXPECT_EQ(planner.unseenWatchAt(farFromIt, 12.0), UnseenWatch::NoWalkway);
     EXPECT_STREQ(unseenWatchName(UnseenWatch::NoWalkway), "no_walkway");
+    EXPECT_EQ(planner.unseenWatchAt({1.5, 3.5}, 4.25 + 30.1), UnseenWatch::NoWalkway);
     // Turned to the walkway, the camera finds it empty: cleared until someone could walk in.
     PlanningContext ctx = contextFor(*map, root, std::atan2(0.5, -1.5));
     ctx.peopleFromCamera = true;
@@ -704,8 +725,9 @@ int stopsRaisedTo(const mapping::ExplorationMap& map, const Eigen::Vector3d& roo
             const FlatPose before = at;
             at = p;
             if (before.position.z() < overHeads - 1e-9 && p.position.z() > overHeads - 1e-9 &&
-                p.position.head<2>().isApprox(before.position.head<2>(), 1e-9))
+                p.position.head<2>().isApprox(before.position.head<2>(), 1e-9)) {
                 EXPECT_DOUBLE_EQ(p.yaw, before.yaw) << "a climb on the spot before its turn";
+            }
             if (k >= asPlanned.waypoints.size()) {
                 ADD_FAILURE() << "more stops than planned, seed " << seed;
                 break;
@@ -715,8 +737,9 @@ int stopsRaisedTo(const mapping::ExplorationMap& map, const Eigen::Vector3d& roo
                 // A point added to climb first, over the heads: with the leg's heading, or
                 // straight up with the heading the drone had, before the turn.
                 EXPECT_NEAR(p.position.z(), overHeads, 1e-9) << seed;
-                if (p.yaw != q.yaw)  // straight up, then (next) the turn
+                if (p.yaw != q.yaw) {  // straight up, then (next) the turn
                     EXPECT_TRUE(p.position.head<2>().isApprox(before.position.head<2>(), 1e-9));
+                }
                 continue;
             }
             // The same stop, the same view; higher where its legs allow it.

@@ -22,7 +22,9 @@ BlindWatch::BlindWatch(const DynamicFrequencyMap& layout, const BlindWatchParams
       lastSeen_(grid_.size(), -kInf),
       unseenFrom_(grid_.size(), -kInf),
       leftAt_(grid_.size(), kInf),
-      personSeen_(grid_.size(), -kInf) {}
+      personSeen_(grid_.size(), -kInf),
+      lostFrom_(grid_.size(), kInf),
+      lostSince_(grid_.size(), -kInf) {}
 
 void BlindWatch::see(const FlatPose& camera, double hfov, double t, const DynamicFrequencyMap& dfm,
                      const std::vector<Eigen::Vector2d>& people,
@@ -56,7 +58,7 @@ void BlindWatch::markView(const FlatPose& camera, double hfov, double t,
                 continue;  // behind a wall
             const auto i = static_cast<std::size_t>(iy * grid_.nx + ix);
             lastSeen_[i] = t;
-            unseenFrom_[i] = leftAt_[i] = kInf;
+            unseenFrom_[i] = leftAt_[i] = lostFrom_[i] = kInf;
         }
 }
 
@@ -73,7 +75,9 @@ void BlindWatch::markLeft(const Eigen::Vector2d& person, double t) {
                 continue;  // in view: whoever walks in is seen there
             const double walk =
                 ix == px && iy == py ? 0.0 : walkTime((grid_.center(ix, iy) - person).norm());
-            leftAt_[i] = std::min(leftAt_[i], std::max(lastSeen_[i], t + walk));
+            const double from = std::max(lastSeen_[i], t + walk);
+            leftAt_[i] = std::min(leftAt_[i], from);
+            offerLost(i, from, t);
         }
 }
 
@@ -102,8 +106,10 @@ void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
     for (std::size_t i = 0; i < onWalkway.size(); ++i) {
         onWalkway[i] = walkway(dfm, static_cast<int>(i) % nx, static_cast<int>(i) / nx);
         // Someone seen in a cell at its last look may still be there once the camera looks away.
-        if (lastSeen_[i] < t && personSeen_[i] > -kInf && personSeen_[i] >= lastSeen_[i])
+        if (lastSeen_[i] < t && personSeen_[i] > -kInf && personSeen_[i] >= lastSeen_[i]) {
             leftAt_[i] = std::min(leftAt_[i], lastSeen_[i]);
+            offerLost(i, lastSeen_[i], personSeen_[i]);
+        }
         if (onWalkway[i])
             unseenFrom_[i] = std::min(unseenFrom_[i], leftAt_[i]);
     }
@@ -135,6 +141,51 @@ void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
     for (int iy = ny - 1; iy >= 0; --iy)
         for (int ix = nx - 1; ix >= 0; --ix)
             relax(ix, iy, kAfter);
+    spreadLost(t);
+}
+
+void BlindWatch::offerLost(std::size_t i, double from, double since) {
+    if (params_.lostTime > 0.0 && from < lostFrom_[i]) {
+        lostFrom_[i] = from;
+        lostSince_[i] = since;
+    }
+}
+
+bool BlindWatch::followed(std::size_t i, double now) const {
+    return lostFrom_[i] < kInf && now - lostSince_[i] <= params_.lostTime;
+}
+
+void BlindWatch::spreadLost(double t) {
+    if (params_.lostTime <= 0.0)
+        return;
+    const int nx = grid_.nx, ny = grid_.ny;
+    for (std::size_t i = 0; i < lostFrom_.size(); ++i)
+        if (!followed(i, t))
+            lostFrom_[i] = kInf;  // followed long enough: along the walkways alone from now on
+    const double side = walkTime(grid_.cellSize);
+    const double diagonal = walkTime(std::sqrt(2.0) * grid_.cellSize);
+    const auto relax = [&](int ix, int iy, const int(&steps)[4][2]) {
+        const auto i = static_cast<std::size_t>(iy * nx + ix);
+        if (lastSeen_[i] == t)
+            return;
+        for (const auto& s : steps) {
+            const int jx = ix + s[0], jy = iy + s[1];
+            if (!grid_.contains(jx, jy))
+                continue;
+            const auto j = static_cast<std::size_t>(jy * nx + jx);
+            const double walk = s[0] != 0 && s[1] != 0 ? diagonal : side;
+            if (lostFrom_[j] < kInf)
+                offerLost(i, std::max(lastSeen_[i], lostFrom_[j] + walk), lostSince_[j]);
+        }
+    };
+    constexpr int kBefore[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+    constexpr int kAfter[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
+    for (int iy = 0; iy < ny; ++iy)
+        for (int ix = 0; ix < nx; ++ix)
+            relax(ix, iy, kBefore);
+    for (int iy = ny - 1; iy >= 0; --iy)
+        for (int ix = nx - 1; ix >= 0; --ix)
+            relax(ix, iy, kAfter);
 }
 
 double BlindWatch::lastSeen(const Eigen::Vector2d& xy) const {
@@ -143,6 +194,13 @@ double BlindWatch::lastSeen(const Eigen::Vector2d& xy) const {
 
 double BlindWatch::unseenFrom(const Eigen::Vector2d& xy) const {
     return atCell(unseenFrom_, xy);
+}
+
+double BlindWatch::lostFrom(const Eigen::Vector2d& xy, double now) const {
+    const int i = grid_.index(xy);
+    return i >= 0 && followed(static_cast<std::size_t>(i), now)
+               ? lostFrom_[static_cast<std::size_t>(i)]
+               : kInf;
 }
 
 bool BlindWatch::walkwayAt(const DynamicFrequencyMap& dfm, const Eigen::Vector2d& xy) const {
@@ -165,12 +223,16 @@ BlindThreat BlindWatch::worstThreat(const DynamicFrequencyMap& dfm, const Eigen:
             const auto i = static_cast<std::size_t>(iy * grid_.nx + ix);
             const Eigen::Vector2d c = grid_.center(ix, iy);
             const double distance = (c - p).norm();
-            const double from = std::max(unseenFrom_[i], now);
-            if (distance > reachMax || from >= until || !walkway(dfm, ix, iy))
+            if (distance > reachMax)
+                continue;
+            const double unseen = walkway(dfm, ix, iy) ? unseenFrom_[i] : kInf;
+            const double lost = followed(i, now) ? lostFrom_[i] : kInf;
+            const double from = std::max(std::min(unseen, lost), now);
+            if (from >= until)
                 continue;
             const double excess = keepOut + params_.walkSpeed * (until - from) - distance;
             if (excess > worst.excess)
-                worst = {excess, c};
+                worst = {excess, c, lost < unseen};
         }
     return worst;
 }

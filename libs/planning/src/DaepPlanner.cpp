@@ -67,6 +67,7 @@ DaepParams DaepParams::fromConfig(const mrpt::config::CConfigFileBase& config) {
     p.blind.stopTime = requireNonNegative(r, "blind_stop_s");
     p.blind.range = requirePositive(r, "blind_watch_range");
     p.blind.maxLooks = requireIntAtLeast(r, "blind_max_looks", 0);
+    p.blind.lostTime = requireNonNegative(r, "blind_lost_s");
     p.flyOverHeads = requireEnum(r, "fly_over_heads", autoSwitch);
     p.overHeadsMinClearance = requireNonNegative(r, "over_heads_min_clearance");
     return p;
@@ -256,9 +257,10 @@ bool DaepPlanner::lookBeforeStop(const PlanningContext& context, Plan& plan) {
     }
     ++looks_;
     std::ostringstream why;
-    why << "look: a person unseen could reach the next stop (by " << threat->excess
-        << " m) from the walkway at " << threat->cell.x() << ", " << threat->cell.y()
-        << "; the look leaves " << look->threatLeft << " m";
+    why << "look: a person unseen could reach the next stop (by " << threat->excess << " m) from "
+        << (threat->lost ? "where a person lost may be, at " : "the walkway at ")
+        << threat->cell.x() << ", " << threat->cell.y() << "; the look leaves " << look->threatLeft
+        << " m";
     Plan out;
     out.status = Plan::Status::Path;
     out.waypoints.push_back({look->pose, look->end});
@@ -673,9 +675,10 @@ bool DaepPlanner::movesClear(const DynamicObstacles& bodies, const PlanningConte
 UnseenWatch DaepPlanner::unseenWatchAt(const Eigen::Vector2d& xy, double time) const {
     if (!guardingBlind_)
         return UnseenWatch::None;
+    const double lost = watch_.lostFrom(xy, time);
     if (!watch_.walkwayAt(dfm_, xy))
-        return UnseenWatch::NoWalkway;
-    return watch_.unseenFrom(xy) <= time ? UnseenWatch::Open : UnseenWatch::Cleared;
+        return lost <= time ? UnseenWatch::Lost : UnseenWatch::NoWalkway;
+    return std::min(watch_.unseenFrom(xy), lost) <= time ? UnseenWatch::Open : UnseenWatch::Cleared;
 }
 
 bool DaepPlanner::startsSafely(const PlanningContext& context, const Plan& plan) const {

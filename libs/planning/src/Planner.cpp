@@ -19,6 +19,8 @@ const char* unseenWatchName(UnseenWatch watch) {
             return "cleared";
         case UnseenWatch::NoWalkway:
             return "no_walkway";
+        case UnseenWatch::Lost:
+            return "lost";
         case UnseenWatch::None:
             break;
     }

@@ -113,9 +113,10 @@ enum class UnseenWatch {
     Open,       ///< a walkway someone unseen may be on by now
     Cleared,    ///< a walkway the camera swept that nobody unseen can have reached yet
     NoWalkway,  ///< a place where the watch expects nobody unseen
+    Lost,       ///< off the walkways, where a person the camera lost may have walked by now
 };
 
-/** The name collisions.csv gives it: "-", "open", "cleared" or "no_walkway". */
+/** The name collisions.csv gives it: "-", "open", "cleared", "no_walkway" or "lost". */
 const char* unseenWatchName(UnseenWatch watch);
 
 /** One interface for RH-NBVP, AEP, DEP and DAEP. */
