@@ -100,8 +100,34 @@ bool BlindWatch::walkway(const DynamicFrequencyMap& dfm, int ix, int iy) const {
     return false;
 }
 
-void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
+template <typename Relax>
+void BlindWatch::walkSweeps(const Relax& relax) const {
+    // Two chamfer sweeps: from the cells before each cell in raster order, then from those
+    // after it; relax(i, j, walk) offers cell i what its neighbour j holds, walk s away.
     const int nx = grid_.nx, ny = grid_.ny;
+    const double side = walkTime(grid_.cellSize);
+    const double diagonal = walkTime(std::sqrt(2.0) * grid_.cellSize);
+    const auto visit = [&](int ix, int iy, const int(&steps)[4][2]) {
+        const auto i = static_cast<std::size_t>(iy * nx + ix);
+        for (const auto& s : steps) {
+            const int jx = ix + s[0], jy = iy + s[1];
+            if (grid_.contains(jx, jy))
+                relax(i, static_cast<std::size_t>(jy * nx + jx),
+                      s[0] != 0 && s[1] != 0 ? diagonal : side);
+        }
+    };
+    constexpr int kBefore[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+    constexpr int kAfter[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
+    for (int iy = 0; iy < ny; ++iy)
+        for (int ix = 0; ix < nx; ++ix)
+            visit(ix, iy, kBefore);
+    for (int iy = ny - 1; iy >= 0; --iy)
+        for (int ix = nx - 1; ix >= 0; --ix)
+            visit(ix, iy, kAfter);
+}
+
+void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
+    const int nx = grid_.nx;
     std::vector<char> onWalkway(grid_.size());
     for (std::size_t i = 0; i < onWalkway.size(); ++i) {
         onWalkway[i] = walkway(dfm, static_cast<int>(i) % nx, static_cast<int>(i) / nx);
@@ -115,32 +141,10 @@ void BlindWatch::spread(const DynamicFrequencyMap& dfm, double t) {
     }
     // Off the walkways only the people just seen walk, from where they were.
     const auto from = [&](std::size_t j) { return onWalkway[j] ? unseenFrom_[j] : leftAt_[j]; };
-    // Two chamfer sweeps along the walkways: from the cells before each cell in raster order,
-    // then from those after it.
-    const double side = walkTime(grid_.cellSize);
-    const double diagonal = walkTime(std::sqrt(2.0) * grid_.cellSize);
-    const auto relax = [&](int ix, int iy, const int(&steps)[4][2]) {
-        const auto i = static_cast<std::size_t>(iy * nx + ix);
-        if (lastSeen_[i] == t || !onWalkway[i])
-            return;
-        double earliest = kInf;
-        for (const auto& s : steps) {
-            const int jx = ix + s[0], jy = iy + s[1];
-            if (!grid_.contains(jx, jy))
-                continue;
-            const double walk = s[0] != 0 && s[1] != 0 ? diagonal : side;
-            earliest = std::min(earliest, from(static_cast<std::size_t>(jy * nx + jx)) + walk);
-        }
-        unseenFrom_[i] = std::min(unseenFrom_[i], std::max(lastSeen_[i], earliest));
-    };
-    constexpr int kBefore[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
-    constexpr int kAfter[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
-    for (int iy = 0; iy < ny; ++iy)
-        for (int ix = 0; ix < nx; ++ix)
-            relax(ix, iy, kBefore);
-    for (int iy = ny - 1; iy >= 0; --iy)
-        for (int ix = nx - 1; ix >= 0; --ix)
-            relax(ix, iy, kAfter);
+    walkSweeps([&](std::size_t i, std::size_t j, double walk) {
+        if (lastSeen_[i] != t && onWalkway[i])
+            unseenFrom_[i] = std::min(unseenFrom_[i], std::max(lastSeen_[i], from(j) + walk));
+    });
     spreadLost(t);
 }
 
@@ -158,34 +162,13 @@ bool BlindWatch::followed(std::size_t i, double now) const {
 void BlindWatch::spreadLost(double t) {
     if (params_.lostTime <= 0.0)
         return;
-    const int nx = grid_.nx, ny = grid_.ny;
     for (std::size_t i = 0; i < lostFrom_.size(); ++i)
         if (!followed(i, t))
             lostFrom_[i] = kInf;  // followed long enough: along the walkways alone from now on
-    const double side = walkTime(grid_.cellSize);
-    const double diagonal = walkTime(std::sqrt(2.0) * grid_.cellSize);
-    const auto relax = [&](int ix, int iy, const int(&steps)[4][2]) {
-        const auto i = static_cast<std::size_t>(iy * nx + ix);
-        if (lastSeen_[i] == t)
-            return;
-        for (const auto& s : steps) {
-            const int jx = ix + s[0], jy = iy + s[1];
-            if (!grid_.contains(jx, jy))
-                continue;
-            const auto j = static_cast<std::size_t>(jy * nx + jx);
-            const double walk = s[0] != 0 && s[1] != 0 ? diagonal : side;
-            if (lostFrom_[j] < kInf)
-                offerLost(i, std::max(lastSeen_[i], lostFrom_[j] + walk), lostSince_[j]);
-        }
-    };
-    constexpr int kBefore[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
-    constexpr int kAfter[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
-    for (int iy = 0; iy < ny; ++iy)
-        for (int ix = 0; ix < nx; ++ix)
-            relax(ix, iy, kBefore);
-    for (int iy = ny - 1; iy >= 0; --iy)
-        for (int ix = nx - 1; ix >= 0; --ix)
-            relax(ix, iy, kAfter);
+    walkSweeps([&](std::size_t i, std::size_t j, double walk) {
+        if (lastSeen_[i] != t && lostFrom_[j] < kInf)
+            offerLost(i, std::max(lastSeen_[i], lostFrom_[j] + walk), lostSince_[j]);
+    });
 }
 
 double BlindWatch::lastSeen(const Eigen::Vector2d& xy) const {

@@ -82,6 +82,9 @@ private:
                   const mapping::ExplorationMap* map);
     void markLeft(const Eigen::Vector2d& person, double t);
     void spread(const DynamicFrequencyMap& dfm, double t);
+    /** The two chamfer sweeps of a walk over the grid (BlindWatch.cpp). */
+    template <typename Relax>
+    void walkSweeps(const Relax& relax) const;
     /** The lost people's walk across every cell, as `spread` along the walkways. */
     void spreadLost(double t);
     /** A lost person, measured at `since`, may be in cell i from `from`. */
