@@ -31,12 +31,17 @@ DaepPlanner makePlanner(std::uint64_t seed, const std::string& key = "",
     return DaepPlanner(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg), seed);
 }
 
-/** makePlanner on the heap, for helpers that prepare a planner (planners do not move). */
-std::unique_ptr<DaepPlanner> newPlanner(std::uint64_t seed, const std::string& key = "",
-                                        const std::string& value = "") {
-    const auto cfg = test::configFromText(daepText(key, value));
+/** A planner on the heap, for helpers that prepare one (planners do not move). */
+std::unique_ptr<DaepPlanner> newPlannerFromText(const std::string& text, std::uint64_t seed) {
+    const auto cfg = test::configFromText(text);
     return std::make_unique<DaepPlanner>(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg),
                                          seed);
+}
+
+/** makePlanner on the heap. */
+std::unique_ptr<DaepPlanner> newPlanner(std::uint64_t seed, const std::string& key = "",
+                                        const std::string& value = "") {
+    return newPlannerFromText(daepText(key, value), seed);
 }
 
 PersonForecast walker(int id, Eigen::Vector2d p, Eigen::Vector2d v, double t0) {
@@ -511,23 +516,18 @@ TEST_F(DaepRoom, FacingTravelFliesEveryLegLookingAheadThenTurnsToTheView) {
     }
 }
 
-/**
- * A camera-fed planner (with `key` = `value` in [daep]) that saw a person stand behind it, at
- * (0.5, 2.5), then lost them.
- */
-/** newPlanner with `blind_lost_s` set as well (0: people lost are followed along walkways). */
+/** newPlanner(3) with `blind_lost_s` set as well (0: people lost are followed along walkways). */
 std::unique_ptr<DaepPlanner> newPlannerFollowingLost(const std::string& lostSeconds,
                                                      const std::string& key = "",
                                                      const std::string& value = "") {
-    const auto cfg = test::configFromText(
-        test::editKey(daepText(key, value), "daep", "blind_lost_s", &lostSeconds));
-    return std::make_unique<DaepPlanner>(DaepParams::fromConfig(*cfg), GainParams::fromConfig(*cfg),
-                                         3);
+    return newPlannerFromText(
+        test::editKey(daepText(key, value), "daep", "blind_lost_s", &lostSeconds), 3);
 }
 
 /**
- * A guarded planner that saw a walker stand behind the drone and lost them at 4.25 s; by
- * default it follows them along the walkways alone, the room's one walkway their cell.
+ * A camera-fed planner (with `key` = `value` in [daep]) that saw a person stand behind it, at
+ * (0.5, 2.5), then lost them at 4.25 s; by default (`lostSeconds` = 0) it follows them along
+ * the walkways alone, the room's one walkway their cell.
  */
 std::unique_ptr<DaepPlanner> guardedAfterAWalkerBehind(const mapping::ExplorationMap& map,
                                                        const Eigen::Vector3d& at,
